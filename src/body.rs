@@ -1,0 +1,96 @@
+//! The components that make an entity a rigid body.
+//!
+//! A body is an entity with a `Transform`, a [`RigidBody`] kind and (usually) a
+//! [`Collider`](crate::collider::Collider). An entity with a `Collider` and no `RigidBody`
+//! is a static collider. Material and mass components are optional; their defaults are
+//! documented on each type.
+
+use bevy::prelude::*;
+
+/// How a body takes part in the simulation.
+#[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[reflect(Component)]
+#[require(Transform, Velocity)]
+pub enum RigidBody {
+    /// Moved by forces and contacts; its mass comes from [`Mass`] or the collider's volume.
+    #[default]
+    Dynamic,
+    /// Never moves; infinite mass. Same as a collider without `RigidBody`.
+    Static,
+    /// Moves with its [`Velocity`] exactly, pushes dynamic bodies, is never pushed back.
+    Kinematic,
+}
+
+/// Linear (m/s) and angular (rad/s) velocity, both in the world frame.
+#[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq)]
+#[reflect(Component)]
+pub struct Velocity {
+    pub linear: Vec3,
+    pub angular: Vec3,
+}
+
+impl Velocity {
+    pub const ZERO: Self = Self { linear: Vec3::ZERO, angular: Vec3::ZERO };
+
+    pub fn linear(linear: Vec3) -> Self {
+        Self { linear, angular: Vec3::ZERO }
+    }
+}
+
+/// Mass in kg. The inertia tensor follows from the collider's shape (solid sphere, solid
+/// box). Without `Mass`, the collider's volume times [`DEFAULT_DENSITY`] gives the mass.
+#[derive(Component, Reflect, Clone, Copy, Debug, PartialEq)]
+#[reflect(Component)]
+pub struct Mass(pub f32);
+
+/// Density used when a dynamic body has no [`Mass`]: water, 1000 kg/m³.
+pub const DEFAULT_DENSITY: f32 = 1000.0;
+
+/// Coefficient of restitution, 0 (no bounce) to 1 (elastic). Default 0.
+///
+/// Two bodies combine by **max**: a bouncy ball bounces on any floor. Bounces slower than
+/// [`SolverSettings::restitution_threshold`](crate::settings::SolverSettings) are treated
+/// as inelastic so resting contacts stay at rest.
+#[derive(Component, Reflect, Clone, Copy, Debug, PartialEq)]
+#[reflect(Component)]
+pub struct Restitution(pub f32);
+
+/// Coulomb friction coefficient μ. Default 0.5.
+///
+/// Two bodies combine by the **geometric mean** √(μa·μb): ice (0) on anything is frictionless.
+#[derive(Component, Reflect, Clone, Copy, Debug, PartialEq)]
+#[reflect(Component)]
+pub struct Friction(pub f32);
+
+/// Friction when a body has no [`Friction`] component.
+pub const DEFAULT_FRICTION: f32 = 0.5;
+
+/// A force (N) and torque (N·m) in the world frame applied at the centre of mass on every
+/// step until changed. Set it back to zero to stop pushing.
+#[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq)]
+#[reflect(Component)]
+pub struct ExternalForce {
+    pub force: Vec3,
+    pub torque: Vec3,
+}
+
+/// Linear drag: acceleration −c·v (c in 1/s). Terminal velocity under gravity is g/c.
+#[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq)]
+#[reflect(Component)]
+pub struct LinearDamping(pub f32);
+
+/// Angular drag: angular acceleration −c·ω (c in 1/s).
+#[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq)]
+#[reflect(Component)]
+pub struct AngularDamping(pub f32);
+
+/// Inserted on a body that was left out of the simulation because its input was invalid
+/// (a non-finite transform or velocity, a non-positive mass or size) or because it became
+/// non-finite during a step. The body is frozen where it was; the message says why.
+/// Remove the component after fixing the input to bring the body back.
+#[derive(Component, Clone, Debug, PartialEq)]
+pub struct PhysicsRejected {
+    /// The offending field, e.g. `"Transform.translation"` or `"Mass"`.
+    pub field: &'static str,
+    pub reason: String,
+}

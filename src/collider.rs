@@ -1,0 +1,157 @@
+//! Collision shapes and the mass properties they imply.
+
+use bevy::prelude::*;
+
+/// The geometry of a body. Sizes are in metres and are not scaled by `Transform::scale`.
+#[derive(Component, Reflect, Clone, Copy, Debug, PartialEq)]
+#[reflect(Component)]
+#[require(Transform)]
+pub struct Collider {
+    pub shape: Shape,
+}
+
+/// The shapes tumble collides. The narrow phase dispatches over pairs of these.
+#[derive(Reflect, Clone, Copy, Debug, PartialEq)]
+pub enum Shape {
+    Sphere { radius: f32 },
+    /// A box given by its half extents.
+    Cuboid { half_extents: Vec3 },
+    /// A static plane through the origin of its entity with normal local +Y. `half_extents`
+    /// bounds it to a rectangle in local X/Z; `None` makes it infinite.
+    Plane { half_extents: Option<Vec2> },
+}
+
+/// Index of a shape kind in the narrow phase's dispatch table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum ShapeKind {
+    Sphere = 0,
+    Cuboid = 1,
+    Plane = 2,
+}
+
+impl Collider {
+    pub fn sphere(radius: f32) -> Self {
+        Self { shape: Shape::Sphere { radius } }
+    }
+    /// A box from its half extents.
+    pub fn cuboid(half_x: f32, half_y: f32, half_z: f32) -> Self {
+        Self { shape: Shape::Cuboid { half_extents: Vec3::new(half_x, half_y, half_z) } }
+    }
+    /// An infinite static plane through the entity's origin, normal along local +Y.
+    pub fn plane() -> Self {
+        Self { shape: Shape::Plane { half_extents: None } }
+    }
+    /// A static plane bounded to the rectangle |x| ≤ half_x, |z| ≤ half_z (local frame).
+    pub fn plane_rect(half_x: f32, half_z: f32) -> Self {
+        Self { shape: Shape::Plane { half_extents: Some(Vec2::new(half_x, half_z)) } }
+    }
+}
+
+impl Shape {
+    pub fn kind(&self) -> ShapeKind {
+        match self {
+            Shape::Sphere { .. } => ShapeKind::Sphere,
+            Shape::Cuboid { .. } => ShapeKind::Cuboid,
+            Shape::Plane { .. } => ShapeKind::Plane,
+        }
+    }
+
+    /// Checks sizes: every size must be finite and > 0. Returns the reason otherwise.
+    pub fn validate(&self) -> Result<(), String> {
+        let ok = |v: f32| v.is_finite() && v > 0.0;
+        match *self {
+            Shape::Sphere { radius } if !ok(radius) => Err(format!("sphere radius {radius}")),
+            Shape::Cuboid { half_extents: h } if !(ok(h.x) && ok(h.y) && ok(h.z)) => {
+                Err(format!("cuboid half extents {h}"))
+            }
+            Shape::Plane { half_extents: Some(h) } if !(ok(h.x) && ok(h.y)) => {
+                Err(format!("plane half extents {h}"))
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// Volume in m³ (0 for planes, which can only be static).
+    pub fn volume(&self) -> f32 {
+        match *self {
+            Shape::Sphere { radius } => 4.0 / 3.0 * std::f32::consts::PI * radius.powi(3),
+            Shape::Cuboid { half_extents: h } => 8.0 * h.x * h.y * h.z,
+            Shape::Plane { .. } => 0.0,
+        }
+    }
+
+    /// Principal moments of inertia of the solid shape with the given mass, body frame.
+    pub fn principal_inertia(&self, mass: f32) -> Vec3 {
+        match *self {
+            Shape::Sphere { radius } => Vec3::splat(0.4 * mass * radius * radius),
+            Shape::Cuboid { half_extents: h } => {
+                let s = h * 2.0;
+                let (x2, y2, z2) = (s.x * s.x, s.y * s.y, s.z * s.z);
+                Vec3::new(y2 + z2, x2 + z2, x2 + y2) * (mass / 12.0)
+            }
+            // A plane has no volume; a kinematic plane never needs inertia.
+            Shape::Plane { .. } => Vec3::splat(mass),
+        }
+    }
+
+    /// World-space bounding box at a pose, as (min, max). Infinite planes are unbounded.
+    pub fn aabb(&self, pos: Vec3, rot: Quat) -> (Vec3, Vec3) {
+        let half = match *self {
+            Shape::Sphere { radius } => Vec3::splat(radius),
+            Shape::Cuboid { half_extents } => abs_rotated(rot, half_extents),
+            Shape::Plane { half_extents: Some(h) } => abs_rotated(rot, Vec3::new(h.x, 0.0, h.y)),
+            Shape::Plane { half_extents: None } => Vec3::splat(f32::INFINITY),
+        };
+        (pos - half, pos + half)
+    }
+
+    /// A length that says how big the shape is, for size-relative tolerances.
+    pub fn size_scale(&self) -> f32 {
+        match *self {
+            Shape::Sphere { radius } => radius,
+            Shape::Cuboid { half_extents } => half_extents.min_element(),
+            Shape::Plane { .. } => f32::INFINITY,
+        }
+    }
+}
+
+/// Half extents of the box `half` rotated by `rot`, projected on the world axes.
+fn abs_rotated(rot: Quat, half: Vec3) -> Vec3 {
+    let m = Mat3::from_quat(rot);
+    Vec3::new(
+        m.row(0).abs().dot(half),
+        m.row(1).abs().dot(half),
+        m.row(2).abs().dot(half),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn box_inertia_matches_formula() {
+        // 1.0 × 0.1 × 0.4 m box, 1 kg: Ixx = (0.01 + 0.16)/12.
+        let i = Collider::cuboid(0.5, 0.05, 0.2).shape.principal_inertia(1.0);
+        assert!((i.x - 0.17 / 12.0).abs() < 1e-7);
+        assert!((i.y - 1.16 / 12.0).abs() < 1e-7);
+        assert!((i.z - 1.01 / 12.0).abs() < 1e-7);
+    }
+
+    #[test]
+    fn rotated_box_aabb_grows_by_sqrt2() {
+        let s = Collider::cuboid(1.0, 1.0, 1.0).shape;
+        let (lo, hi) = s.aabb(Vec3::ZERO, Quat::from_rotation_y(std::f32::consts::FRAC_PI_4));
+        assert!((hi.x - 2f32.sqrt()).abs() < 1e-5 && (lo.z + 2f32.sqrt()).abs() < 1e-5);
+        assert!((hi.y - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn bad_sizes_are_rejected() {
+        assert!(Collider::sphere(0.0).shape.validate().is_err());
+        assert!(Collider::sphere(f32::NAN).shape.validate().is_err());
+        assert!(Collider::cuboid(1.0, -1.0, 1.0).shape.validate().is_err());
+        assert!(Collider::plane_rect(1.0, f32::INFINITY).shape.validate().is_err());
+        assert!(Collider::plane().shape.validate().is_ok());
+    }
+}

@@ -1,0 +1,37 @@
+//! # tumble — 3D rigid-body physics for Bevy
+//!
+//! Bodies are ordinary entities with a [`Transform`](bevy::prelude::Transform) plus the
+//! components in [`prelude`]. [`TumblePlugin`] steps them in `FixedUpdate` as a chain of
+//! [`PhysicsSystems`] stages, in this order (the folder tree of `src/step/` follows it):
+//!
+//! 1. **prepare** — validate bodies and gather them from the ECS into contiguous arrays
+//! 2. **integrate** — advance every body's free motion with the chosen [`Integrator`]
+//! 3. **broad phase** — candidate pairs from swept, fattened bounding boxes
+//! 4. **narrow phase** — contact manifolds, dispatched over shape pairs
+//! 5. **solve** — soft-step contact impulses with substeps, friction and restitution
+//! 6. **writeback** — arrays back to `Transform` / `Velocity`
+//!
+//! Everything between prepare and writeback works on plain slices in [`PhysicsWorld`]
+//! and is tested without Bevy.
+
+pub mod body;
+pub mod collider;
+pub mod plugin;
+pub mod settings;
+pub mod step;
+pub mod world;
+
+pub use plugin::{PhysicsSystems, TumblePlugin};
+pub use world::PhysicsWorld;
+
+/// Everything a game needs: `use tumble::prelude::*;`
+pub mod prelude {
+    pub use crate::body::{
+        AngularDamping, ExternalForce, Friction, LinearDamping, Mass, PhysicsRejected,
+        Restitution, RigidBody, Velocity,
+    };
+    pub use crate::collider::Collider;
+    pub use crate::plugin::{PhysicsSystems, TumblePlugin};
+    pub use crate::settings::{Gravity, Integrator, SolverSettings};
+    pub use crate::world::PhysicsWorld;
+}

@@ -1,0 +1,76 @@
+//! Global simulation settings: gravity, the integrator, and the solver's knobs.
+
+use bevy::prelude::*;
+
+/// Uniform gravitational acceleration, m/s². Default (0, −9.81, 0).
+#[derive(Resource, Reflect, Clone, Copy, Debug, PartialEq)]
+#[reflect(Resource)]
+pub struct Gravity(pub Vec3);
+
+impl Default for Gravity {
+    fn default() -> Self {
+        Self(Vec3::new(0.0, -9.81, 0.0))
+    }
+}
+
+/// The time integrator for the free motion (forces, drag, rotation). Switchable at run time.
+///
+/// Contacts are velocity impulses in every case; see `step/2_integrate` for how each
+/// integrator composes with the contact solve.
+#[derive(Resource, Reflect, Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[reflect(Resource)]
+pub enum Integrator {
+    /// The 2015 engine's method: position from the old velocity, velocity from the old
+    /// state. First order; gains energy on rotation and oscillation.
+    ExplicitEuler,
+    /// Symplectic Euler: velocity first, then position with the new velocity. First order,
+    /// bounded energy. Rotation uses an implicit-midpoint gyroscopic solve.
+    #[default]
+    SemiImplicitEuler,
+    /// Classic fourth-order Runge–Kutta on position, orientation, velocity and spin.
+    Rk4,
+}
+
+impl Integrator {
+    pub const ALL: [Integrator; 3] =
+        [Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::Rk4];
+}
+
+/// The solver's knobs. Defaults follow the soft-step solver's usual numbers.
+#[derive(Resource, Reflect, Clone, Copy, Debug, PartialEq)]
+#[reflect(Resource)]
+pub struct SolverSettings {
+    /// Substeps per fixed step. Each substep integrates, solves contacts and relaxes.
+    /// Free motion is integrated with the substep size h/substeps too.
+    pub substeps: u32,
+    /// Extra velocity iterations per substep (the soft step needs 1).
+    pub iterations: u32,
+    /// Contact stiffness as a frequency, Hz. Capped at a quarter of the substep rate.
+    pub contact_hertz: f32,
+    /// Contact damping ratio (heavily over-damped by default).
+    pub contact_damping_ratio: f32,
+    /// Fastest speed, m/s, at which overlapping bodies are pushed apart.
+    pub max_push_out: f32,
+    /// Normal approach speed, m/s, below which contacts don't bounce.
+    pub restitution_threshold: f32,
+    /// Contacts are created this far (m) before touching, on top of the distance the
+    /// bodies can close in one step, so fast bodies don't tunnel.
+    pub speculative_margin: f32,
+    /// Speeds are clamped to this (m/s) so a blow-up cannot run away.
+    pub max_linear_speed: f32,
+}
+
+impl Default for SolverSettings {
+    fn default() -> Self {
+        Self {
+            substeps: 4,
+            iterations: 1,
+            contact_hertz: 30.0,
+            contact_damping_ratio: 10.0,
+            max_push_out: 3.0,
+            restitution_threshold: 1.0,
+            speculative_margin: 0.02,
+            max_linear_speed: 400.0,
+        }
+    }
+}

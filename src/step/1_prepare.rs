@@ -1,0 +1,212 @@
+//! Stage 1, prepare: validate bodies and gather them from the ECS into the contiguous
+//! arrays of [`PhysicsWorld`]. A body with invalid input is left out, tagged with
+//! [`PhysicsRejected`], and reported once in the log by entity and field.
+
+use bevy::prelude::*;
+
+use crate::body::*;
+use crate::collider::{Collider, Shape};
+use crate::settings::{Gravity, SolverSettings};
+use crate::world::{BodyState, ColliderEntry, ForceModel, PhysicsWorld, STATIC, SolverBody};
+
+/// The components prepare reads from each body or collider entity.
+pub type BodyQueryData = (
+    Entity,
+    &'static Transform,
+    Option<&'static Collider>,
+    Option<&'static RigidBody>,
+    Option<&'static Velocity>,
+    Option<&'static Mass>,
+    Option<&'static Restitution>,
+    Option<&'static Friction>,
+    Option<&'static ExternalForce>,
+    Option<&'static LinearDamping>,
+    Option<&'static AngularDamping>,
+);
+
+/// Which entities prepare gathers: bodies and colliders that were not rejected.
+pub type BodyQueryFilter = (Without<PhysicsRejected>, Or<(With<RigidBody>, With<Collider>)>);
+
+/// Gathers every valid body and collider into [`PhysicsWorld`] for this step.
+pub fn prepare_bodies(
+    mut commands: Commands,
+    mut world: ResMut<PhysicsWorld>,
+    time: Res<Time>,
+    gravity: Res<Gravity>,
+    settings: Res<SolverSettings>,
+    query: Query<BodyQueryData, BodyQueryFilter>,
+) {
+    let world = &mut *world;
+    world.dt = time.delta_secs();
+    world.solver_bodies.clear();
+    world.bodies.clear();
+    world.colliders.clear();
+
+    for (entity, tf, collider, kind, vel, mass, rest, fric, force, lin_d, ang_d) in &query {
+        let kind = kind.copied().unwrap_or(RigidBody::Static);
+        let vel = if kind == RigidBody::Static { Velocity::ZERO } else { vel.copied().unwrap_or_default() };
+        let shape = collider.map(|c| c.shape);
+        let checked = validate(tf, &vel, kind, mass, shape.as_ref()).and_then(|()| validate_force(force));
+        if let Err((field, reason)) = checked {
+            error!("tumble: body {entity} left out of the simulation: {field} is invalid ({reason})");
+            commands.entity(entity).insert(PhysicsRejected { field, reason });
+            continue;
+        }
+        let rot = tf.rotation.normalize();
+        let body = if kind == RigidBody::Static {
+            STATIC
+        } else {
+            let index = world.bodies.len() as u32;
+            let (state, solver) =
+                gather_body(entity, kind, tf.translation, rot, vel, mass, shape, force, lin_d, ang_d, gravity.0, &settings);
+            world.bodies.push(state);
+            world.solver_bodies.push(solver);
+            index
+        };
+        if let Some(shape) = shape {
+            world.colliders.push(ColliderEntry {
+                entity,
+                body,
+                shape,
+                pos: tf.translation,
+                rot,
+                friction: fric.map_or(DEFAULT_FRICTION, |f| f.0),
+                restitution: rest.map_or(0.0, |r| r.0),
+                aabb_min: Vec3::ZERO,
+                aabb_max: Vec3::ZERO,
+            });
+        }
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn gather_body(
+    entity: Entity,
+    kind: RigidBody,
+    pos: Vec3,
+    rot: Quat,
+    vel: Velocity,
+    mass: Option<&Mass>,
+    shape: Option<Shape>,
+    force: Option<&ExternalForce>,
+    lin_d: Option<&LinearDamping>,
+    ang_d: Option<&AngularDamping>,
+    gravity: Vec3,
+    settings: &SolverSettings,
+) -> (BodyState, SolverBody) {
+    // A dynamic body without a collider rotates like a solid ball of 0.5 m radius.
+    let shape = shape.unwrap_or(Shape::Sphere { radius: 0.5 });
+    let dynamic = kind == RigidBody::Dynamic;
+    let m = mass.map_or(shape.volume() * DEFAULT_DENSITY, |m| m.0);
+    let inertia = shape.principal_inertia(m);
+    let (inv_mass, inv_inertia) =
+        if dynamic { (1.0 / m, inertia.recip()) } else { (0.0, Vec3::ZERO) };
+    let forces = if dynamic {
+        ForceModel {
+            accel: gravity + force.map_or(Vec3::ZERO, |f| f.force) * inv_mass,
+            torque: force.map_or(Vec3::ZERO, |f| f.torque),
+            linear_damping: lin_d.map_or(0.0, |d| d.0.max(0.0)),
+            angular_damping: ang_d.map_or(0.0, |d| d.0.max(0.0)),
+        }
+    } else {
+        ForceModel::default()
+    };
+    let v = vel.linear.clamp_length_max(settings.max_linear_speed);
+    let state = BodyState {
+        entity,
+        kind,
+        x0: pos,
+        q0: rot,
+        v0: v,
+        w0: vel.angular,
+        inertia,
+        inv_inertia,
+        forces,
+        in_contact: false,
+    };
+    let solver = SolverBody {
+        v,
+        w: vel.angular,
+        dp: Vec3::ZERO,
+        dq: Quat::IDENTITY,
+        inv_mass,
+        inv_inertia: world_inv_inertia(rot, inv_inertia),
+    };
+    (state, solver)
+}
+
+/// R · diag(inv_principal) · Rᵀ.
+pub fn world_inv_inertia(rot: Quat, inv_principal: Vec3) -> Mat3 {
+    let r = Mat3::from_quat(rot);
+    r * Mat3::from_diagonal(inv_principal) * r.transpose()
+}
+
+/// Checks one body's input. Returns the offending field and why.
+pub fn validate(
+    tf: &Transform,
+    vel: &Velocity,
+    kind: RigidBody,
+    mass: Option<&Mass>,
+    shape: Option<&Shape>,
+) -> Result<(), (&'static str, String)> {
+    if !tf.translation.is_finite() {
+        return Err(("Transform.translation", format!("{}", tf.translation)));
+    }
+    if !tf.rotation.is_finite() || tf.rotation.length_squared() < 1e-12 {
+        return Err(("Transform.rotation", format!("{:?}", tf.rotation)));
+    }
+    if !vel.linear.is_finite() {
+        return Err(("Velocity.linear", format!("{}", vel.linear)));
+    }
+    if !vel.angular.is_finite() {
+        return Err(("Velocity.angular", format!("{}", vel.angular)));
+    }
+    if kind == RigidBody::Dynamic {
+        if let Some(m) = mass.filter(|m| !(m.0.is_finite() && m.0 > 0.0)) {
+            return Err(("Mass", format!("{} kg: mass must be finite and > 0", m.0)));
+        }
+    }
+    if let Some(shape) = shape {
+        shape.validate().map_err(|r| ("Collider", format!("{r}: sizes must be finite and > 0")))?;
+        if kind == RigidBody::Dynamic && matches!(shape, Shape::Plane { .. }) {
+            return Err(("Collider", "a plane can only be static or kinematic".into()));
+        }
+    }
+    Ok(())
+}
+
+fn validate_force(force: Option<&ExternalForce>) -> Result<(), (&'static str, String)> {
+    match force {
+        Some(f) if !(f.force.is_finite() && f.torque.is_finite()) => {
+            Err(("ExternalForce", format!("force {} torque {}", f.force, f.torque)))
+        }
+        _ => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check(tf: Transform, vel: Velocity, mass: Option<f32>, shape: Shape) -> Option<&'static str> {
+        let mass = mass.map(Mass);
+        validate(&tf, &vel, RigidBody::Dynamic, mass.as_ref(), Some(&shape)).err().map(|e| e.0)
+    }
+
+    #[test]
+    fn each_bad_field_is_named() {
+        let s = Collider::sphere(1.0).shape;
+        let v = Velocity::ZERO;
+        assert_eq!(check(Transform::from_xyz(f32::NAN, 0., 0.), v, None, s), Some("Transform.translation"));
+        let bad_rot = Transform { rotation: Quat::from_xyzw(0., f32::INFINITY, 0., 1.), ..default() };
+        assert_eq!(check(bad_rot, v, None, s), Some("Transform.rotation"));
+        let fast = Velocity::linear(Vec3::new(0., f32::INFINITY, 0.));
+        assert_eq!(check(Transform::IDENTITY, fast, None, s), Some("Velocity.linear"));
+        assert_eq!(check(Transform::IDENTITY, v, Some(0.0), s), Some("Mass"));
+        assert_eq!(check(Transform::IDENTITY, v, Some(-2.0), s), Some("Mass"));
+        assert_eq!(check(Transform::IDENTITY, v, Some(f32::NAN), s), Some("Mass"));
+        assert_eq!(check(Transform::IDENTITY, v, None, Collider::sphere(-1.0).shape), Some("Collider"));
+        assert_eq!(check(Transform::IDENTITY, v, None, Collider::plane().shape), Some("Collider"));
+        assert_eq!(check(Transform::IDENTITY, v, Some(1.0), s), None);
+    }
+}

@@ -1,0 +1,62 @@
+//! Contact manifolds: what the narrow phase hands the solver.
+
+use bevy::prelude::*;
+
+/// Most points a manifold keeps (a box face on a box face reduces to four).
+pub const MAX_POINTS: usize = 4;
+
+/// One contact point.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ContactPoint {
+    /// World position at the start of the step, midway between the two surfaces.
+    pub point: Vec3,
+    /// Signed distance along the normal: negative when overlapping, positive for a
+    /// speculative point that has not touched yet.
+    pub separation: f32,
+    /// Which features touch (face, edge, vertex ids). Stable while the same features touch,
+    /// so the impulses carry over to the next step.
+    pub id: u32,
+    /// Accumulated normal impulse (N·s): warm start in, solved value out.
+    pub normal_impulse: f32,
+    /// Accumulated friction impulse in the world frame.
+    pub tangent_impulse: Vec3,
+}
+
+/// The contact between two colliders: one normal, up to [`MAX_POINTS`] points.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Manifold {
+    /// Collider indices into [`PhysicsWorld::colliders`](crate::PhysicsWorld).
+    pub a: u32,
+    pub b: u32,
+    /// Unit normal pointing from A to B.
+    pub normal: Vec3,
+    pub points: [ContactPoint; MAX_POINTS],
+    pub len: usize,
+    /// Combined material of the pair.
+    pub friction: f32,
+    pub restitution: f32,
+}
+
+impl Manifold {
+    pub fn points(&self) -> &[ContactPoint] {
+        &self.points[..self.len]
+    }
+
+    pub fn points_mut(&mut self) -> &mut [ContactPoint] {
+        &mut self.points[..self.len]
+    }
+
+    /// Adds a point; beyond [`MAX_POINTS`] it is ignored (shape code reduces first).
+    pub fn push(&mut self, point: Vec3, separation: f32, id: u32) {
+        if self.len < MAX_POINTS {
+            self.points[self.len] = ContactPoint { point, separation, id, ..default() };
+            self.len += 1;
+        }
+    }
+
+    /// Swaps the roles of A and B: the normal flips.
+    pub fn flip(&mut self) {
+        std::mem::swap(&mut self.a, &mut self.b);
+        self.normal = -self.normal;
+    }
+}

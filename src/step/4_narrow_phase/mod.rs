@@ -1,0 +1,124 @@
+//! Stage 4, narrow phase: a contact manifold for each candidate pair, by a dispatch table
+//! over shape pairs. Contacts are computed at the start-of-step poses and kept up to a
+//! speculative distance (the margin plus how far the pair can close in one step), so the
+//! solver can stop bodies exactly where they meet, however fast they are.
+//!
+//! Warm starting: each new point looks up last step's impulses of the same pair and
+//! feature id.
+
+mod manifold;
+mod sphere_plane;
+mod sphere_sphere;
+
+use bevy::prelude::*;
+
+use crate::collider::Shape;
+use crate::settings::SolverSettings;
+use crate::world::{ColliderEntry, PhysicsWorld, STATIC};
+
+pub use manifold::{ContactPoint, MAX_POINTS, Manifold};
+
+/// A shape at a pose.
+#[derive(Clone, Copy, Debug)]
+pub struct Posed<'a> {
+    pub shape: &'a Shape,
+    pub pos: Vec3,
+    pub rot: Quat,
+}
+
+impl<'a> Posed<'a> {
+    pub fn of(c: &'a ColliderEntry) -> Self {
+        Self { shape: &c.shape, pos: c.pos, rot: c.rot }
+    }
+}
+
+/// Collides A with B (A's kind ≤ B's kind) and fills `out` (normal from A to B, points).
+pub type CollideFn = fn(Posed, Posed, f32, &mut Manifold);
+
+fn sphere_sphere(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
+    let (Shape::Sphere { radius: ra }, Shape::Sphere { radius: rb }) = (a.shape, b.shape) else {
+        return;
+    };
+    sphere_sphere::collide(a, *ra, b, *rb, margin, out);
+}
+
+fn sphere_plane(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
+    let (Shape::Sphere { radius }, Shape::Plane { half_extents }) = (a.shape, b.shape) else {
+        return;
+    };
+    sphere_plane::collide(a, *radius, b, *half_extents, margin, out);
+}
+
+/// The dispatch table, indexed by [`ShapeKind`] (A ≤ B). `None`: the pair never collides.
+const DISPATCH: [[Option<CollideFn>; 3]; 3] = [
+    //   Sphere               Cuboid  Plane
+    [Some(sphere_sphere), None, Some(sphere_plane)], // Sphere
+    [None, None, None],                               // Cuboid
+    [None, None, None],                               // Plane
+];
+
+/// Collides two colliders, ordering them for the table. The manifold's normal points from
+/// `a` to `b` as given. Returns `None` when they don't touch within `margin`.
+pub fn collide(a: &ColliderEntry, ia: u32, b: &ColliderEntry, ib: u32, margin: f32) -> Option<Manifold> {
+    let swap = a.shape.kind() > b.shape.kind();
+    let (first, second) = if swap { (b, a) } else { (a, b) };
+    let f = DISPATCH[first.shape.kind() as usize][second.shape.kind() as usize]?;
+    let mut m = Manifold { a: ia, b: ib, ..default() };
+    if swap {
+        std::mem::swap(&mut m.a, &mut m.b);
+    }
+    f(Posed::of(first), Posed::of(second), margin, &mut m);
+    if m.len == 0 {
+        return None;
+    }
+    if swap {
+        m.flip();
+    }
+    Some(m)
+}
+
+/// Computes the manifolds of all candidate pairs and warm-starts them from the cache.
+pub fn collide_pairs(mut world: ResMut<PhysicsWorld>, settings: Res<SolverSettings>) {
+    let world = &mut *world;
+    world.manifolds.clear();
+    let dt = world.dt;
+    for &(ia, ib) in &world.pairs {
+        let (a, b) = (&world.colliders[ia as usize], &world.colliders[ib as usize]);
+        let (da, db) = (is_dynamic(world, a.body), is_dynamic(world, b.body));
+        if !da && !db {
+            continue;
+        }
+        let reach = dt * (closing_speed(world, a) + closing_speed(world, b));
+        let Some(mut m) = collide(a, ia, b, ib, settings.speculative_margin + reach) else {
+            continue;
+        };
+        m.friction = (a.friction * b.friction).max(0.0).sqrt();
+        m.restitution = a.restitution.max(b.restitution);
+        let (ea, eb) = (world.colliders[m.a as usize].entity, world.colliders[m.b as usize].entity);
+        if let Some(cached) = world.impulse_cache.get(&(ea, eb)) {
+            for p in m.points_mut() {
+                if let Some(c) = cached.points().iter().find(|c| c.id == p.id) {
+                    p.normal_impulse = c.normal_impulse;
+                    p.tangent_impulse = c.tangent_impulse;
+                }
+            }
+        }
+        world.manifolds.push(m);
+    }
+}
+
+fn is_dynamic(world: &PhysicsWorld, body: u32) -> bool {
+    body != STATIC && world.bodies[body as usize].is_dynamic()
+}
+
+/// An upper bound on how fast any point of the collider moves this step.
+fn closing_speed(world: &PhysicsWorld, c: &ColliderEntry) -> f32 {
+    if c.body == STATIC {
+        return 0.0;
+    }
+    let (b, s) = (&world.bodies[c.body as usize], &world.solver_bodies[c.body as usize]);
+    let (lo, hi) = c.shape.aabb(Vec3::ZERO, Quat::IDENTITY);
+    let reach = lo.abs().max(hi.abs()).length();
+    let reach = if reach.is_finite() { reach } else { 0.0 };
+    b.v0.length().max(s.v.length()) + b.w0.length().max(s.w.length()) * reach
+}

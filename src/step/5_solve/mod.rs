@@ -1,0 +1,139 @@
+//! Stage 5, solve: contact impulses with the soft step, substepped.
+//!
+//! Only bodies that touch something are solved; they restart from the beginning of the
+//! step and run [`SolverStage`]s in order. Everything else keeps stage 2's free motion.
+
+mod contact;
+mod softness;
+
+use bevy::prelude::*;
+
+use crate::settings::{Integrator, SolverSettings};
+use crate::step::integrate::{FreeStep, Inertial, free_substep, rotate};
+use crate::world::{PhysicsWorld, STATIC};
+
+pub use contact::{ContactConstraint, apply_restitution, prepare_constraints, solve, warm_start};
+pub use softness::Softness;
+
+/// The solver's stages in execution order. `PrepareContacts` runs once per step; the
+/// five substep stages run `substeps` times; `Restitution` and `StoreImpulses` once.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SolverStage {
+    PrepareContacts,
+    IntegrateVelocities,
+    WarmStart,
+    Solve,
+    IntegratePositions,
+    Relax,
+    Restitution,
+    StoreImpulses,
+}
+
+/// Scratch kept between steps so the solver does not allocate.
+#[derive(Default)]
+pub struct SolverScratch {
+    /// Bodies this step's contacts touch.
+    active: Vec<u32>,
+    /// Each active body's free motion for the current substep.
+    free: Vec<FreeStep>,
+}
+
+/// Solves every contact of this step.
+pub fn solve_contacts(
+    mut world: ResMut<PhysicsWorld>,
+    integrator: Res<Integrator>,
+    settings: Res<SolverSettings>,
+    mut scratch: Local<SolverScratch>,
+) {
+    let world = &mut *world;
+    let n = settings.substeps.max(1);
+    let h = world.dt / n as f32;
+    if world.manifolds.is_empty() || h <= 0.0 {
+        world.impulse_cache.clear();
+        return;
+    }
+    let scratch = &mut *scratch;
+    collect_active_bodies(world, &mut scratch.active);
+    for &i in &scratch.active {
+        let (b, s) = (&world.bodies[i as usize], &mut world.solver_bodies[i as usize]);
+        (s.dp, s.dq, s.v, s.w) = (Vec3::ZERO, Quat::IDENTITY, b.v0, b.w0);
+    }
+
+    // PrepareContacts. Stiffness is capped at a quarter of the substep rate; a contact
+    // against something that cannot move may be twice as stiff.
+    let hertz = settings.contact_hertz.min(0.25 / h);
+    let soft = Softness::new(hertz, settings.contact_damping_ratio, h);
+    let soft_static = Softness::new((2.0 * hertz).min(0.25 / h), settings.contact_damping_ratio, h);
+    prepare_constraints(
+        &world.manifolds,
+        &world.colliders,
+        &world.bodies,
+        &world.solver_bodies,
+        soft,
+        soft_static,
+        &mut world.constraints,
+    );
+
+    for _ in 0..n {
+        // IntegrateVelocities
+        scratch.free.clear();
+        for &i in &scratch.active {
+            let (b, s) = (&world.bodies[i as usize], &mut world.solver_bodies[i as usize]);
+            let q = (s.dq * b.q0).normalize();
+            let fs = free_substep(*integrator, b.kind, Inertial::of(b), q, s.v, s.w, h);
+            s.v = fs.v.clamp_length_max(settings.max_linear_speed);
+            s.w = fs.w;
+            scratch.free.push(fs);
+        }
+        // WarmStart, Solve
+        warm_start(&mut world.solver_bodies, &world.constraints);
+        for _ in 0..settings.iterations.max(1) {
+            solve(&mut world.solver_bodies, &mut world.constraints, h, settings.max_push_out, true);
+        }
+        // IntegratePositions: the free increment plus the contact impulses' share.
+        for (&i, fs) in scratch.active.iter().zip(&scratch.free) {
+            let (b, s) = (&world.bodies[i as usize], &mut world.solver_bodies[i as usize]);
+            s.dp += fs.dx + h * (s.v - fs.v);
+            s.dq = (rotate(fs.q, s.w - fs.w, h) * b.q0.inverse()).normalize();
+        }
+        // Relax
+        for _ in 0..settings.iterations.max(1) {
+            solve(&mut world.solver_bodies, &mut world.constraints, h, settings.max_push_out, false);
+        }
+    }
+
+    apply_restitution(&mut world.solver_bodies, &mut world.constraints, settings.restitution_threshold);
+    store_impulses(world);
+}
+
+/// Marks and lists the dynamic and kinematic bodies that any manifold touches.
+fn collect_active_bodies(world: &mut PhysicsWorld, active: &mut Vec<u32>) {
+    active.clear();
+    for b in world.bodies.iter_mut() {
+        b.in_contact = false;
+    }
+    for m in &world.manifolds {
+        for c in [m.a, m.b] {
+            let body = world.colliders[c as usize].body;
+            if body != STATIC && !world.bodies[body as usize].in_contact {
+                world.bodies[body as usize].in_contact = true;
+                active.push(body);
+            }
+        }
+    }
+    active.sort_unstable();
+}
+
+/// StoreImpulses: results into the manifolds (for readers) and the warm-start cache.
+fn store_impulses(world: &mut PhysicsWorld) {
+    for c in &world.constraints {
+        let p = &mut world.manifolds[c.manifold as usize].points[c.point as usize];
+        p.normal_impulse = c.normal_impulse;
+        p.tangent_impulse = c.tangent1 * c.tangent_impulse.x + c.tangent2 * c.tangent_impulse.y;
+    }
+    world.impulse_cache.clear();
+    for m in &world.manifolds {
+        let key = (world.colliders[m.a as usize].entity, world.colliders[m.b as usize].entity);
+        world.impulse_cache.insert(key, *m);
+    }
+}

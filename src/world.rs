@@ -1,0 +1,126 @@
+//! [`PhysicsWorld`]: the contiguous arrays the step works on between prepare and writeback.
+
+use bevy::platform::collections::HashMap;
+use bevy::prelude::*;
+
+use crate::body::RigidBody;
+use crate::collider::Shape;
+use crate::step::narrow_phase::Manifold;
+use crate::step::solve::ContactConstraint;
+
+/// Body index of a static collider: no solver body, zero velocity, infinite mass.
+pub const STATIC: u32 = u32::MAX;
+
+/// The small hot state the solver iterates over. Positions are kept as changes since the
+/// start of the step (`dp`, `dq`) so that contact anchors stay precise far from the origin.
+#[derive(Clone, Copy, Debug)]
+pub struct SolverBody {
+    pub v: Vec3,
+    pub w: Vec3,
+    /// Position change since the start of the step.
+    pub dp: Vec3,
+    /// Rotation since the start of the step (world orientation = dq · q0).
+    pub dq: Quat,
+    pub inv_mass: f32,
+    /// World-frame inverse inertia at the start of the step.
+    pub inv_inertia: Mat3,
+}
+
+/// Accelerations and torques on a body from gravity, user forces and drag.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ForceModel {
+    /// Constant part of the linear acceleration: gravity + force/mass.
+    pub accel: Vec3,
+    /// World-frame torque, N·m.
+    pub torque: Vec3,
+    /// Linear drag coefficient c: a −= c·v.
+    pub linear_damping: f32,
+    /// Angular drag coefficient: α −= c·ω.
+    pub angular_damping: f32,
+}
+
+/// The cold per-body data of one step, parallel to [`PhysicsWorld::solver_bodies`].
+#[derive(Clone, Copy, Debug)]
+pub struct BodyState {
+    pub entity: Entity,
+    pub kind: RigidBody,
+    /// Pose and velocity at the start of the step.
+    pub x0: Vec3,
+    pub q0: Quat,
+    pub v0: Vec3,
+    pub w0: Vec3,
+    /// Principal moments of inertia (body frame) and their inverses (0 for kinematic).
+    pub inertia: Vec3,
+    pub inv_inertia: Vec3,
+    pub forces: ForceModel,
+    /// The body touches something this step, so the solver re-integrates it with contacts.
+    pub in_contact: bool,
+}
+
+impl BodyState {
+    pub fn is_dynamic(&self) -> bool {
+        self.kind == RigidBody::Dynamic
+    }
+}
+
+/// One collider of this step. Dynamic and kinematic colliders point at their body.
+#[derive(Clone, Copy, Debug)]
+pub struct ColliderEntry {
+    pub entity: Entity,
+    /// Index into the body arrays, or [`STATIC`].
+    pub body: u32,
+    pub shape: Shape,
+    /// Pose at the start of the step.
+    pub pos: Vec3,
+    pub rot: Quat,
+    pub friction: f32,
+    pub restitution: f32,
+    /// Bounds swept over the step's free motion and fattened by the speculative margin.
+    pub aabb_min: Vec3,
+    pub aabb_max: Vec3,
+}
+
+/// The simulation's working state. Rebuilt by prepare each step; the contact cache
+/// survives between steps for warm starting.
+#[derive(Resource, Default)]
+pub struct PhysicsWorld {
+    /// Hot solver state, one per dynamic or kinematic body.
+    pub solver_bodies: Vec<SolverBody>,
+    /// Cold per-body data, parallel to `solver_bodies`.
+    pub bodies: Vec<BodyState>,
+    pub colliders: Vec<ColliderEntry>,
+    /// Candidate collider pairs from the broad phase, as indices into `colliders`.
+    pub pairs: Vec<(u32, u32)>,
+    /// Contact manifolds from the narrow phase.
+    pub manifolds: Vec<Manifold>,
+    /// Per-point contact constraints built by the solver.
+    pub constraints: Vec<ContactConstraint>,
+    /// Last step's accumulated impulses by entity pair, for warm starting.
+    pub impulse_cache: HashMap<(Entity, Entity), Manifold>,
+    /// The fixed step of the current step, seconds.
+    pub dt: f32,
+    /// Steps taken since the plugin started.
+    pub step_count: u64,
+}
+
+impl PhysicsWorld {
+    /// The current world pose of a body during the step.
+    pub fn body_pose(&self, i: usize) -> (Vec3, Quat) {
+        let (b, s) = (&self.bodies[i], &self.solver_bodies[i]);
+        (b.x0 + s.dp, (s.dq * b.q0).normalize())
+    }
+
+    /// Total kinetic energy of the dynamic bodies (J), from the current solver state.
+    pub fn kinetic_energy(&self) -> f32 {
+        self.bodies
+            .iter()
+            .zip(&self.solver_bodies)
+            .filter(|(b, _)| b.is_dynamic())
+            .map(|(b, s)| {
+                let rot = s.dq * b.q0;
+                let w_body = rot.inverse() * s.w;
+                0.5 * s.v.length_squared() / s.inv_mass + 0.5 * w_body.dot(b.inertia * w_body)
+            })
+            .sum()
+    }
+}
