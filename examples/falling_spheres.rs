@@ -9,18 +9,30 @@ use tumble::prelude::*;
 
 fn main() {
     App::new()
-        .add_plugins((DefaultPlugins, PanOrbitCameraPlugin, TumblePlugin::default()))
+        .add_plugins((
+            DefaultPlugins,
+            PanOrbitCameraPlugin,
+            TumblePlugin::default(),
+        ))
         .add_systems(Startup, setup)
         .run();
 }
 
-fn setup(mut commands: Commands, mut meshes: ResMut<Assets<Mesh>>, mut materials: ResMut<Assets<StandardMaterial>>) {
+fn setup(
+    mut commands: Commands,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+) {
     commands.spawn((
         PanOrbitCamera::default(),
         Transform::from_xyz(0.0, 6.0, 14.0).looking_at(Vec3::new(0.0, 2.0, 0.0), Vec3::Y),
     ));
     commands.spawn((
-        DirectionalLight { shadow_maps_enabled: true, illuminance: 8000.0, ..default() },
+        DirectionalLight {
+            shadow_maps_enabled: true,
+            illuminance: 8000.0,
+            ..default()
+        },
         Transform::from_xyz(4.0, 10.0, 6.0).looking_at(Vec3::ZERO, Vec3::Y),
     ));
     commands.spawn((

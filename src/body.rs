@@ -30,10 +30,16 @@ pub struct Velocity {
 }
 
 impl Velocity {
-    pub const ZERO: Self = Self { linear: Vec3::ZERO, angular: Vec3::ZERO };
+    pub const ZERO: Self = Self {
+        linear: Vec3::ZERO,
+        angular: Vec3::ZERO,
+    };
 
     pub fn linear(linear: Vec3) -> Self {
-        Self { linear, angular: Vec3::ZERO }
+        Self {
+            linear,
+            angular: Vec3::ZERO,
+        }
     }
 }
 

@@ -13,12 +13,18 @@ pub struct Collider {
 /// The shapes tumble collides. The narrow phase dispatches over pairs of these.
 #[derive(Reflect, Clone, Copy, Debug, PartialEq)]
 pub enum Shape {
-    Sphere { radius: f32 },
+    Sphere {
+        radius: f32,
+    },
     /// A box given by its half extents.
-    Cuboid { half_extents: Vec3 },
+    Cuboid {
+        half_extents: Vec3,
+    },
     /// A static plane through the origin of its entity with normal local +Y. `half_extents`
     /// bounds it to a rectangle in local X/Z; `None` makes it infinite.
-    Plane { half_extents: Option<Vec2> },
+    Plane {
+        half_extents: Option<Vec2>,
+    },
 }
 
 /// Index of a shape kind in the narrow phase's dispatch table.
@@ -31,19 +37,31 @@ pub enum ShapeKind {
 
 impl Collider {
     pub fn sphere(radius: f32) -> Self {
-        Self { shape: Shape::Sphere { radius } }
+        Self {
+            shape: Shape::Sphere { radius },
+        }
     }
     /// A box from its half extents.
     pub fn cuboid(half_x: f32, half_y: f32, half_z: f32) -> Self {
-        Self { shape: Shape::Cuboid { half_extents: Vec3::new(half_x, half_y, half_z) } }
+        Self {
+            shape: Shape::Cuboid {
+                half_extents: Vec3::new(half_x, half_y, half_z),
+            },
+        }
     }
     /// An infinite static plane through the entity's origin, normal along local +Y.
     pub fn plane() -> Self {
-        Self { shape: Shape::Plane { half_extents: None } }
+        Self {
+            shape: Shape::Plane { half_extents: None },
+        }
     }
     /// A static plane bounded to the rectangle |x| ≤ half_x, |z| ≤ half_z (local frame).
     pub fn plane_rect(half_x: f32, half_z: f32) -> Self {
-        Self { shape: Shape::Plane { half_extents: Some(Vec2::new(half_x, half_z)) } }
+        Self {
+            shape: Shape::Plane {
+                half_extents: Some(Vec2::new(half_x, half_z)),
+            },
+        }
     }
 }
 
@@ -64,9 +82,9 @@ impl Shape {
             Shape::Cuboid { half_extents: h } if !(ok(h.x) && ok(h.y) && ok(h.z)) => {
                 Err(format!("cuboid half extents {h}"))
             }
-            Shape::Plane { half_extents: Some(h) } if !(ok(h.x) && ok(h.y)) => {
-                Err(format!("plane half extents {h}"))
-            }
+            Shape::Plane {
+                half_extents: Some(h),
+            } if !(ok(h.x) && ok(h.y)) => Err(format!("plane half extents {h}")),
             _ => Ok(()),
         }
     }
@@ -99,7 +117,9 @@ impl Shape {
         let half = match *self {
             Shape::Sphere { radius } => Vec3::splat(radius),
             Shape::Cuboid { half_extents } => abs_rotated(rot, half_extents),
-            Shape::Plane { half_extents: Some(h) } => abs_rotated(rot, Vec3::new(h.x, 0.0, h.y)),
+            Shape::Plane {
+                half_extents: Some(h),
+            } => abs_rotated(rot, Vec3::new(h.x, 0.0, h.y)),
             Shape::Plane { half_extents: None } => Vec3::splat(f32::INFINITY),
         };
         (pos - half, pos + half)
@@ -132,7 +152,9 @@ mod tests {
     #[test]
     fn box_inertia_matches_formula() {
         // 1.0 × 0.1 × 0.4 m box, 1 kg: Ixx = (0.01 + 0.16)/12.
-        let i = Collider::cuboid(0.5, 0.05, 0.2).shape.principal_inertia(1.0);
+        let i = Collider::cuboid(0.5, 0.05, 0.2)
+            .shape
+            .principal_inertia(1.0);
         assert!((i.x - 0.17 / 12.0).abs() < 1e-7);
         assert!((i.y - 1.16 / 12.0).abs() < 1e-7);
         assert!((i.z - 1.01 / 12.0).abs() < 1e-7);
@@ -141,7 +163,10 @@ mod tests {
     #[test]
     fn rotated_box_aabb_grows_by_sqrt2() {
         let s = Collider::cuboid(1.0, 1.0, 1.0).shape;
-        let (lo, hi) = s.aabb(Vec3::ZERO, Quat::from_rotation_y(std::f32::consts::FRAC_PI_4));
+        let (lo, hi) = s.aabb(
+            Vec3::ZERO,
+            Quat::from_rotation_y(std::f32::consts::FRAC_PI_4),
+        );
         assert!((hi.x - 2f32.sqrt()).abs() < 1e-5 && (lo.z + 2f32.sqrt()).abs() < 1e-5);
         assert!((hi.y - 1.0).abs() < 1e-6);
     }
@@ -151,7 +176,12 @@ mod tests {
         assert!(Collider::sphere(0.0).shape.validate().is_err());
         assert!(Collider::sphere(f32::NAN).shape.validate().is_err());
         assert!(Collider::cuboid(1.0, -1.0, 1.0).shape.validate().is_err());
-        assert!(Collider::plane_rect(1.0, f32::INFINITY).shape.validate().is_err());
+        assert!(
+            Collider::plane_rect(1.0, f32::INFINITY)
+                .shape
+                .validate()
+                .is_err()
+        );
         assert!(Collider::plane().shape.validate().is_ok());
     }
 }

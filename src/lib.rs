@@ -27,8 +27,8 @@ pub use world::PhysicsWorld;
 /// Everything a game needs: `use tumble::prelude::*;`
 pub mod prelude {
     pub use crate::body::{
-        AngularDamping, ExternalForce, Friction, LinearDamping, Mass, PhysicsRejected,
-        Restitution, RigidBody, Velocity,
+        AngularDamping, ExternalForce, Friction, LinearDamping, Mass, PhysicsRejected, Restitution,
+        RigidBody, Velocity,
     };
     pub use crate::collider::Collider;
     pub use crate::plugin::{PhysicsSystems, TumblePlugin};

@@ -32,8 +32,11 @@ pub enum Integrator {
 }
 
 impl Integrator {
-    pub const ALL: [Integrator; 3] =
-        [Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::Rk4];
+    pub const ALL: [Integrator; 3] = [
+        Integrator::ExplicitEuler,
+        Integrator::SemiImplicitEuler,
+        Integrator::Rk4,
+    ];
 }
 
 /// The solver's knobs. Defaults follow the soft-step solver's usual numbers.

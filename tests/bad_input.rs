@@ -16,17 +16,69 @@ fn each_bad_field_rejects_only_its_body() {
     ground(&mut app, Vec3::ZERO, Quat::IDENTITY);
     let good = ball(&mut app, 0.5, 1.0, Vec3::new(0.0, 2.0, 0.0), Vec3::ZERO);
     let cases: Vec<(Entity, &str)> = vec![
-        (ball(&mut app, 0.5, 1.0, Vec3::new(f32::NAN, 2.0, 0.0), Vec3::ZERO), "Transform.translation"),
-        (ball(&mut app, 0.5, 1.0, Vec3::new(0.5, f32::INFINITY, 0.0), Vec3::ZERO), "Transform.translation"),
-        (ball(&mut app, 0.5, 1.0, Vec3::new(0.4, 2.0, 0.0), Vec3::new(f32::NAN, 0.0, 0.0)), "Velocity.linear"),
-        (ball(&mut app, 0.5, 0.0, Vec3::new(0.3, 2.0, 0.0), Vec3::ZERO), "Mass"),
-        (ball(&mut app, 0.5, -1.0, Vec3::new(0.2, 2.0, 0.0), Vec3::ZERO), "Mass"),
-        (ball(&mut app, 0.5, f32::INFINITY, Vec3::new(0.1, 2.0, 0.0), Vec3::ZERO), "Mass"),
-        (ball(&mut app, 0.0, 1.0, Vec3::new(0.0, 2.5, 0.0), Vec3::ZERO), "Collider"),
-        (ball(&mut app, -0.5, 1.0, Vec3::new(0.0, 2.4, 0.0), Vec3::ZERO), "Collider"),
+        (
+            ball(
+                &mut app,
+                0.5,
+                1.0,
+                Vec3::new(f32::NAN, 2.0, 0.0),
+                Vec3::ZERO,
+            ),
+            "Transform.translation",
+        ),
+        (
+            ball(
+                &mut app,
+                0.5,
+                1.0,
+                Vec3::new(0.5, f32::INFINITY, 0.0),
+                Vec3::ZERO,
+            ),
+            "Transform.translation",
+        ),
+        (
+            ball(
+                &mut app,
+                0.5,
+                1.0,
+                Vec3::new(0.4, 2.0, 0.0),
+                Vec3::new(f32::NAN, 0.0, 0.0),
+            ),
+            "Velocity.linear",
+        ),
+        (
+            ball(&mut app, 0.5, 0.0, Vec3::new(0.3, 2.0, 0.0), Vec3::ZERO),
+            "Mass",
+        ),
+        (
+            ball(&mut app, 0.5, -1.0, Vec3::new(0.2, 2.0, 0.0), Vec3::ZERO),
+            "Mass",
+        ),
+        (
+            ball(
+                &mut app,
+                0.5,
+                f32::INFINITY,
+                Vec3::new(0.1, 2.0, 0.0),
+                Vec3::ZERO,
+            ),
+            "Mass",
+        ),
+        (
+            ball(&mut app, 0.0, 1.0, Vec3::new(0.0, 2.5, 0.0), Vec3::ZERO),
+            "Collider",
+        ),
+        (
+            ball(&mut app, -0.5, 1.0, Vec3::new(0.0, 2.4, 0.0), Vec3::ZERO),
+            "Collider",
+        ),
         (
             app.world_mut()
-                .spawn((RigidBody::Dynamic, Collider::cuboid(0.5, f32::NAN, 0.5), Transform::from_xyz(0.0, 2.3, 0.0)))
+                .spawn((
+                    RigidBody::Dynamic,
+                    Collider::cuboid(0.5, f32::NAN, 0.5),
+                    Transform::from_xyz(0.0, 2.3, 0.0),
+                ))
                 .id(),
             "Collider",
         ),
@@ -36,22 +88,35 @@ fn each_bad_field_rejects_only_its_body() {
                     RigidBody::Dynamic,
                     Collider::sphere(0.5),
                     Transform::from_xyz(0.0, 2.2, 0.0),
-                    Velocity { linear: Vec3::ZERO, angular: Vec3::splat(f32::NEG_INFINITY) },
+                    Velocity {
+                        linear: Vec3::ZERO,
+                        angular: Vec3::splat(f32::NEG_INFINITY),
+                    },
                 ))
                 .id(),
             "Velocity.angular",
         ),
     ];
-    let before: Vec<Transform> = cases.iter().map(|(e, _)| *app.world().get::<Transform>(*e).unwrap()).collect();
+    let before: Vec<Transform> = cases
+        .iter()
+        .map(|(e, _)| *app.world().get::<Transform>(*e).unwrap())
+        .collect();
     step(&mut app, 120);
     for ((e, field), tf) in cases.iter().zip(before) {
         assert_eq!(rejected_field(&app, *e), Some(*field), "entity {e}");
         let now = app.world().get::<Transform>(*e).unwrap();
-        assert!(now.translation.x.to_bits() == tf.translation.x.to_bits() && now.translation.y.to_bits() == tf.translation.y.to_bits(), "rejected body did not move");
+        assert!(
+            now.translation.x.to_bits() == tf.translation.x.to_bits()
+                && now.translation.y.to_bits() == tf.translation.y.to_bits(),
+            "rejected body did not move"
+        );
     }
     // The good ball overlaps several of the rejected ones and still lands normally.
     let p = pos(&app, good);
-    assert!(p.is_finite() && (p.y - 0.5).abs() < 0.01, "good ball at {p}");
+    assert!(
+        p.is_finite() && (p.y - 0.5).abs() < 0.01,
+        "good ball at {p}"
+    );
     assert!(rejected_field(&app, good).is_none());
 }
 
@@ -61,11 +126,17 @@ fn body_that_blows_up_mid_step_is_frozen_and_reported() {
     let bystander = ball(&mut app, 0.5, 1.0, Vec3::new(1.2, 0.0, 0.0), Vec3::ZERO);
     let wild = ball(&mut app, 0.5, 1.0, Vec3::ZERO, Vec3::new(1.0, 0.0, 0.0));
     // A finite torque whose integration overflows f32.
-    app.world_mut().entity_mut(wild).insert(ExternalForce { force: Vec3::ZERO, torque: Vec3::splat(3e38) });
+    app.world_mut().entity_mut(wild).insert(ExternalForce {
+        force: Vec3::ZERO,
+        torque: Vec3::splat(3e38),
+    });
     step(&mut app, 5);
     assert_eq!(rejected_field(&app, wild), Some("Transform"));
     let tf = app.world().get::<Transform>(wild).unwrap();
-    assert!(tf.translation.is_finite() && tf.rotation.is_finite(), "frozen at its last finite pose");
+    assert!(
+        tf.translation.is_finite() && tf.rotation.is_finite(),
+        "frozen at its last finite pose"
+    );
     let v = vel(&app, bystander);
     assert!(v.linear.is_finite() && v.angular.is_finite() && pos(&app, bystander).is_finite());
 }

@@ -47,10 +47,19 @@ fn apex_heights_follow_e_to_the_2n() {
         let v = (2.0 * 9.81 * prev).sqrt();
         let tol = 6.0 * 9.81 * hs / v;
         let ratio = h / prev;
-        assert!((ratio - e * e).abs() < e * e * tol, "bounce {}: apex ratio {ratio}, expected {} ± {tol}", n + 1, e * e);
+        assert!(
+            (ratio - e * e).abs() < e * e * tol,
+            "bounce {}: apex ratio {ratio}, expected {} ± {tol}",
+            n + 1,
+            e * e
+        );
         tol_sum += tol;
         let expected = e.powi(2 * (n as i32 + 1)) * h0;
-        assert!((h - expected).abs() < expected * tol_sum, "bounce {}: apex {h}, expected {expected} (±{tol_sum})", n + 1);
+        assert!(
+            (h - expected).abs() < expected * tol_sum,
+            "bounce {}: apex {h}, expected {expected} (±{tol_sum})",
+            n + 1
+        );
         prev = h;
     }
 }

@@ -21,7 +21,10 @@ fn fall(integrator: Integrator) -> (f64, f64, f64) {
     for _ in 0..120 * substeps {
         match integrator {
             Integrator::ExplicitEuler => (y, v) = (y + hs * v, v - hs * G),
-            Integrator::SemiImplicitEuler => { v -= hs * G; y += hs * v; }
+            Integrator::SemiImplicitEuler => {
+                v -= hs * G;
+                y += hs * v;
+            }
             Integrator::Rk4 => (y, v) = (y + hs * v - 0.5 * G * hs * hs, v - hs * G),
         }
     }
@@ -34,7 +37,10 @@ fn each_integrator_follows_its_recurrence_and_known_error() {
     let exact = -0.5 * G * t * t;
     for integrator in Integrator::ALL {
         let (y, recurrence, hs) = fall(integrator);
-        assert!(((y - recurrence) / recurrence).abs() < 1e-5, "{integrator:?}: {y} vs recurrence {recurrence}");
+        assert!(
+            ((y - recurrence) / recurrence).abs() < 1e-5,
+            "{integrator:?}: {y} vs recurrence {recurrence}"
+        );
         // Explicit Euler moves with the old velocity: it stays ½·g·hs·t above the parabola.
         // Semi-implicit moves with the new one: ½·g·hs·t below. RK4 is exact for constant g.
         let expected_error = match integrator {
@@ -43,7 +49,10 @@ fn each_integrator_follows_its_recurrence_and_known_error() {
             Integrator::Rk4 => 0.0,
         };
         let err = y - exact;
-        assert!((err - expected_error).abs() < 1e-5 * exact.abs(), "{integrator:?}: error {err}, expected {expected_error}");
+        assert!(
+            (err - expected_error).abs() < 1e-5 * exact.abs(),
+            "{integrator:?}: error {err}, expected {expected_error}"
+        );
     }
 }
 

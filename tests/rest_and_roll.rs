@@ -35,7 +35,10 @@ fn ball_rolls_down_slope_at_five_sevenths_g_sin_theta() {
     let v1 = vel(&app, b).linear.length();
     let a = (v1 - v0) / 1.0;
     let expected = 5.0 / 7.0 * 9.81 * theta.sin();
-    assert!((a - expected).abs() < 0.02 * expected, "a = {a}, expected {expected}");
+    assert!(
+        (a - expected).abs() < 0.02 * expected,
+        "a = {a}, expected {expected}"
+    );
     // Rolling: the contact point does not slip.
     let v = vel(&app, b);
     let slip = v.linear + v.angular.cross(-n * 0.5);

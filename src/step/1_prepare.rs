@@ -25,7 +25,10 @@ pub type BodyQueryData = (
 );
 
 /// Which entities prepare gathers: bodies and colliders that were not rejected.
-pub type BodyQueryFilter = (Without<PhysicsRejected>, Or<(With<RigidBody>, With<Collider>)>);
+pub type BodyQueryFilter = (
+    Without<PhysicsRejected>,
+    Or<(With<RigidBody>, With<Collider>)>,
+);
 
 /// Gathers every valid body and collider into [`PhysicsWorld`] for this step.
 pub fn prepare_bodies(
@@ -44,12 +47,21 @@ pub fn prepare_bodies(
 
     for (entity, tf, collider, kind, vel, mass, rest, fric, force, lin_d, ang_d) in &query {
         let kind = kind.copied().unwrap_or(RigidBody::Static);
-        let vel = if kind == RigidBody::Static { Velocity::ZERO } else { vel.copied().unwrap_or_default() };
+        let vel = if kind == RigidBody::Static {
+            Velocity::ZERO
+        } else {
+            vel.copied().unwrap_or_default()
+        };
         let shape = collider.map(|c| c.shape);
-        let checked = validate(tf, &vel, kind, mass, shape.as_ref()).and_then(|()| validate_force(force));
+        let checked =
+            validate(tf, &vel, kind, mass, shape.as_ref()).and_then(|()| validate_force(force));
         if let Err((field, reason)) = checked {
-            error!("tumble: body {entity} left out of the simulation: {field} is invalid ({reason})");
-            commands.entity(entity).insert(PhysicsRejected { field, reason });
+            error!(
+                "tumble: body {entity} left out of the simulation: {field} is invalid ({reason})"
+            );
+            commands
+                .entity(entity)
+                .insert(PhysicsRejected { field, reason });
             continue;
         }
         let rot = tf.rotation.normalize();
@@ -57,8 +69,20 @@ pub fn prepare_bodies(
             STATIC
         } else {
             let index = world.bodies.len() as u32;
-            let (state, solver) =
-                gather_body(entity, kind, tf.translation, rot, vel, mass, shape, force, lin_d, ang_d, gravity.0, &settings);
+            let (state, solver) = gather_body(
+                entity,
+                kind,
+                tf.translation,
+                rot,
+                vel,
+                mass,
+                shape,
+                force,
+                lin_d,
+                ang_d,
+                gravity.0,
+                &settings,
+            );
             world.bodies.push(state);
             world.solver_bodies.push(solver);
             index
@@ -99,8 +123,11 @@ fn gather_body(
     let dynamic = kind == RigidBody::Dynamic;
     let m = mass.map_or(shape.volume() * DEFAULT_DENSITY, |m| m.0);
     let inertia = shape.principal_inertia(m);
-    let (inv_mass, inv_inertia) =
-        if dynamic { (1.0 / m, inertia.recip()) } else { (0.0, Vec3::ZERO) };
+    let (inv_mass, inv_inertia) = if dynamic {
+        (1.0 / m, inertia.recip())
+    } else {
+        (0.0, Vec3::ZERO)
+    };
     let forces = if dynamic {
         ForceModel {
             accel: gravity + force.map_or(Vec3::ZERO, |f| f.force) * inv_mass,
@@ -167,7 +194,9 @@ pub fn validate(
         }
     }
     if let Some(shape) = shape {
-        shape.validate().map_err(|r| ("Collider", format!("{r}: sizes must be finite and > 0")))?;
+        shape
+            .validate()
+            .map_err(|r| ("Collider", format!("{r}: sizes must be finite and > 0")))?;
         if kind == RigidBody::Dynamic && matches!(shape, Shape::Plane { .. }) {
             return Err(("Collider", "a plane can only be static or kinematic".into()));
         }
@@ -177,9 +206,10 @@ pub fn validate(
 
 fn validate_force(force: Option<&ExternalForce>) -> Result<(), (&'static str, String)> {
     match force {
-        Some(f) if !(f.force.is_finite() && f.torque.is_finite()) => {
-            Err(("ExternalForce", format!("force {} torque {}", f.force, f.torque)))
-        }
+        Some(f) if !(f.force.is_finite() && f.torque.is_finite()) => Err((
+            "ExternalForce",
+            format!("force {} torque {}", f.force, f.torque),
+        )),
         _ => Ok(()),
     }
 }
@@ -188,25 +218,50 @@ fn validate_force(force: Option<&ExternalForce>) -> Result<(), (&'static str, St
 mod tests {
     use super::*;
 
-    fn check(tf: Transform, vel: Velocity, mass: Option<f32>, shape: Shape) -> Option<&'static str> {
+    fn check(
+        tf: Transform,
+        vel: Velocity,
+        mass: Option<f32>,
+        shape: Shape,
+    ) -> Option<&'static str> {
         let mass = mass.map(Mass);
-        validate(&tf, &vel, RigidBody::Dynamic, mass.as_ref(), Some(&shape)).err().map(|e| e.0)
+        validate(&tf, &vel, RigidBody::Dynamic, mass.as_ref(), Some(&shape))
+            .err()
+            .map(|e| e.0)
     }
 
     #[test]
     fn each_bad_field_is_named() {
         let s = Collider::sphere(1.0).shape;
         let v = Velocity::ZERO;
-        assert_eq!(check(Transform::from_xyz(f32::NAN, 0., 0.), v, None, s), Some("Transform.translation"));
-        let bad_rot = Transform { rotation: Quat::from_xyzw(0., f32::INFINITY, 0., 1.), ..default() };
+        assert_eq!(
+            check(Transform::from_xyz(f32::NAN, 0., 0.), v, None, s),
+            Some("Transform.translation")
+        );
+        let bad_rot = Transform {
+            rotation: Quat::from_xyzw(0., f32::INFINITY, 0., 1.),
+            ..default()
+        };
         assert_eq!(check(bad_rot, v, None, s), Some("Transform.rotation"));
         let fast = Velocity::linear(Vec3::new(0., f32::INFINITY, 0.));
-        assert_eq!(check(Transform::IDENTITY, fast, None, s), Some("Velocity.linear"));
+        assert_eq!(
+            check(Transform::IDENTITY, fast, None, s),
+            Some("Velocity.linear")
+        );
         assert_eq!(check(Transform::IDENTITY, v, Some(0.0), s), Some("Mass"));
         assert_eq!(check(Transform::IDENTITY, v, Some(-2.0), s), Some("Mass"));
-        assert_eq!(check(Transform::IDENTITY, v, Some(f32::NAN), s), Some("Mass"));
-        assert_eq!(check(Transform::IDENTITY, v, None, Collider::sphere(-1.0).shape), Some("Collider"));
-        assert_eq!(check(Transform::IDENTITY, v, None, Collider::plane().shape), Some("Collider"));
+        assert_eq!(
+            check(Transform::IDENTITY, v, Some(f32::NAN), s),
+            Some("Mass")
+        );
+        assert_eq!(
+            check(Transform::IDENTITY, v, None, Collider::sphere(-1.0).shape),
+            Some("Collider")
+        );
+        assert_eq!(
+            check(Transform::IDENTITY, v, None, Collider::plane().shape),
+            Some("Collider")
+        );
         assert_eq!(check(Transform::IDENTITY, v, Some(1.0), s), None);
     }
 }

@@ -19,11 +19,16 @@ pub fn writeback_bodies(
         if body.kind == RigidBody::Static {
             continue;
         }
-        let Ok((mut tf, mut vel)) = query.get_mut(body.entity) else { continue };
+        let Ok((mut tf, mut vel)) = query.get_mut(body.entity) else {
+            continue;
+        };
         let (pos, rot) = world.body_pose(i);
         let s = &world.solver_bodies[i];
         if !(pos.is_finite() && rot.is_finite() && s.v.is_finite() && s.w.is_finite()) {
-            error!("tumble: body {} became non-finite during step {}; frozen", body.entity, world.step_count);
+            error!(
+                "tumble: body {} became non-finite during step {}; frozen",
+                body.entity, world.step_count
+            );
             commands.entity(body.entity).insert(PhysicsRejected {
                 field: "Transform",
                 reason: format!("non-finite state after step {}", world.step_count),

@@ -45,11 +45,22 @@ pub fn vel(app: &App, e: Entity) -> Velocity {
 /// A dynamic ball of radius `r` and mass `m` at `p` moving at `v`.
 pub fn ball(app: &mut App, r: f32, m: f32, p: Vec3, v: Vec3) -> Entity {
     app.world_mut()
-        .spawn((RigidBody::Dynamic, Collider::sphere(r), Mass(m), Transform::from_translation(p), Velocity::linear(v)))
+        .spawn((
+            RigidBody::Dynamic,
+            Collider::sphere(r),
+            Mass(m),
+            Transform::from_translation(p),
+            Velocity::linear(v),
+        ))
         .id()
 }
 
 /// A static infinite plane through `p` whose normal is `rot`·Y.
 pub fn ground(app: &mut App, p: Vec3, rot: Quat) -> Entity {
-    app.world_mut().spawn((Collider::plane(), Transform::from_translation(p).with_rotation(rot))).id()
+    app.world_mut()
+        .spawn((
+            Collider::plane(),
+            Transform::from_translation(p).with_rotation(rot),
+        ))
+        .id()
 }

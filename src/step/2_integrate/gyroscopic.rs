@@ -28,7 +28,11 @@ pub fn solve_gyroscopic_midpoint(inertia: Vec3, w1: Vec3, torque: Vec3, h: f32) 
 
 /// The cross-product matrix: skew(a)·b = a × b.
 pub fn skew(a: Vec3) -> Mat3 {
-    Mat3::from_cols(Vec3::new(0.0, a.z, -a.y), Vec3::new(-a.z, 0.0, a.x), Vec3::new(a.y, -a.x, 0.0))
+    Mat3::from_cols(
+        Vec3::new(0.0, a.z, -a.y),
+        Vec3::new(-a.z, 0.0, a.x),
+        Vec3::new(a.y, -a.x, 0.0),
+    )
 }
 
 #[cfg(test)]

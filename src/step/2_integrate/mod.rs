@@ -51,7 +51,11 @@ pub struct Inertial<'a> {
 
 impl<'a> Inertial<'a> {
     pub fn of(body: &'a BodyState) -> Self {
-        Self { forces: &body.forces, inertia: body.inertia, inv_inertia: body.inv_inertia }
+        Self {
+            forces: &body.forces,
+            inertia: body.inertia,
+            inv_inertia: body.inv_inertia,
+        }
     }
 }
 
@@ -67,7 +71,12 @@ pub fn free_substep(
     h: f32,
 ) -> FreeStep {
     if kind != RigidBody::Dynamic {
-        return FreeStep { dx: v * h, q: rotate(q, w, h), v, w };
+        return FreeStep {
+            dx: v * h,
+            q: rotate(q, w, h),
+            v,
+            w,
+        };
     }
     match integrator {
         Integrator::ExplicitEuler => explicit_euler::step(body, q, v, w, h),

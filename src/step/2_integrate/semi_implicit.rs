@@ -14,5 +14,10 @@ pub fn step(body: Inertial, q: Quat, v: Vec3, w: Vec3, h: f32) -> FreeStep {
     let tb = q.inverse() * f.torque;
     let wb = solve_gyroscopic_midpoint(body.inertia, wb, tb, h);
     let w = (q * wb) / (1.0 + h * f.angular_damping);
-    FreeStep { dx: v * h, q: rotate(q, w, h), v, w }
+    FreeStep {
+        dx: v * h,
+        q: rotate(q, w, h),
+        v,
+        w,
+    }
 }

@@ -10,7 +10,10 @@ pub fn sweep_and_prune_pairs(colliders: &[ColliderEntry], pairs: &mut Vec<(u32, 
     pairs.clear();
     let mut order: Vec<u32> = (0..colliders.len() as u32).collect();
     order.sort_unstable_by(|&a, &b| {
-        colliders[a as usize].aabb_min.x.total_cmp(&colliders[b as usize].aabb_min.x)
+        colliders[a as usize]
+            .aabb_min
+            .x
+            .total_cmp(&colliders[b as usize].aabb_min.x)
     });
     let mut active: Vec<u32> = Vec::new();
     for &i in &order {

@@ -49,7 +49,12 @@ impl Manifold {
     /// Adds a point; beyond [`MAX_POINTS`] it is ignored (shape code reduces first).
     pub fn push(&mut self, point: Vec3, separation: f32, id: u32) {
         if self.len < MAX_POINTS {
-            self.points[self.len] = ContactPoint { point, separation, id, ..default() };
+            self.points[self.len] = ContactPoint {
+                point,
+                separation,
+                id,
+                ..default()
+            };
             self.len += 1;
         }
     }

@@ -28,7 +28,11 @@ pub struct Posed<'a> {
 
 impl<'a> Posed<'a> {
     pub fn of(c: &'a ColliderEntry) -> Self {
-        Self { shape: &c.shape, pos: c.pos, rot: c.rot }
+        Self {
+            shape: &c.shape,
+            pos: c.pos,
+            rot: c.rot,
+        }
     }
 }
 
@@ -53,17 +57,27 @@ fn sphere_plane(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
 const DISPATCH: [[Option<CollideFn>; 3]; 3] = [
     //   Sphere               Cuboid  Plane
     [Some(sphere_sphere), None, Some(sphere_plane)], // Sphere
-    [None, None, None],                               // Cuboid
-    [None, None, None],                               // Plane
+    [None, None, None],                              // Cuboid
+    [None, None, None],                              // Plane
 ];
 
 /// Collides two colliders, ordering them for the table. The manifold's normal points from
 /// `a` to `b` as given. Returns `None` when they don't touch within `margin`.
-pub fn collide(a: &ColliderEntry, ia: u32, b: &ColliderEntry, ib: u32, margin: f32) -> Option<Manifold> {
+pub fn collide(
+    a: &ColliderEntry,
+    ia: u32,
+    b: &ColliderEntry,
+    ib: u32,
+    margin: f32,
+) -> Option<Manifold> {
     let swap = a.shape.kind() > b.shape.kind();
     let (first, second) = if swap { (b, a) } else { (a, b) };
     let f = DISPATCH[first.shape.kind() as usize][second.shape.kind() as usize]?;
-    let mut m = Manifold { a: ia, b: ib, ..default() };
+    let mut m = Manifold {
+        a: ia,
+        b: ib,
+        ..default()
+    };
     if swap {
         std::mem::swap(&mut m.a, &mut m.b);
     }
@@ -94,7 +108,10 @@ pub fn collide_pairs(mut world: ResMut<PhysicsWorld>, settings: Res<SolverSettin
         };
         m.friction = (a.friction * b.friction).max(0.0).sqrt();
         m.restitution = a.restitution.max(b.restitution);
-        let (ea, eb) = (world.colliders[m.a as usize].entity, world.colliders[m.b as usize].entity);
+        let (ea, eb) = (
+            world.colliders[m.a as usize].entity,
+            world.colliders[m.b as usize].entity,
+        );
         if let Some(cached) = world.impulse_cache.get(&(ea, eb)) {
             for p in m.points_mut() {
                 if let Some(c) = cached.points().iter().find(|c| c.id == p.id) {
@@ -116,7 +133,10 @@ fn closing_speed(world: &PhysicsWorld, c: &ColliderEntry) -> f32 {
     if c.body == STATIC {
         return 0.0;
     }
-    let (b, s) = (&world.bodies[c.body as usize], &world.solver_bodies[c.body as usize]);
+    let (b, s) = (
+        &world.bodies[c.body as usize],
+        &world.solver_bodies[c.body as usize],
+    );
     let (lo, hi) = c.shape.aabb(Vec3::ZERO, Quat::IDENTITY);
     let reach = lo.abs().max(hi.abs()).length();
     let reach = if reach.is_finite() { reach } else { 0.0 };

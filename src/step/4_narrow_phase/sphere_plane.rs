@@ -11,7 +11,14 @@ use super::{Manifold, Posed};
 /// Feature ids: the face, or an edge/corner region of the rectangle.
 const FACE: u32 = 0;
 
-pub fn collide(sphere: Posed, r: f32, plane: Posed, half: Option<Vec2>, margin: f32, out: &mut Manifold) {
+pub fn collide(
+    sphere: Posed,
+    r: f32,
+    plane: Posed,
+    half: Option<Vec2>,
+    margin: f32,
+    out: &mut Manifold,
+) {
     let n = plane.rot * Vec3::Y;
     let local = plane.rot.inverse() * (sphere.pos - plane.pos);
     let Some(h) = half else {
@@ -49,11 +56,21 @@ mod tests {
 
     #[test]
     fn sphere_above_tilted_plane() {
-        let (s, p) = (Shape::Sphere { radius: 0.5 }, Shape::Plane { half_extents: None });
+        let (s, p) = (
+            Shape::Sphere { radius: 0.5 },
+            Shape::Plane { half_extents: None },
+        );
         let rot = Quat::from_rotation_z(0.3);
         let n = rot * Vec3::Y;
         let mut m = Manifold::default();
-        collide(posed(&s, n * 0.6, Quat::IDENTITY), 0.5, posed(&p, Vec3::ZERO, rot), None, 0.2, &mut m);
+        collide(
+            posed(&s, n * 0.6, Quat::IDENTITY),
+            0.5,
+            posed(&p, Vec3::ZERO, rot),
+            None,
+            0.2,
+            &mut m,
+        );
         assert_eq!(m.len, 1);
         assert!((m.points[0].separation - 0.1).abs() < 1e-6);
         assert!((m.normal + n).length() < 1e-6);
@@ -63,24 +80,58 @@ mod tests {
 
     #[test]
     fn sphere_beside_bounded_plane_touches_its_edge() {
-        let (s, p) = (Shape::Sphere { radius: 0.5 }, Shape::Plane { half_extents: Some(Vec2::ONE) });
+        let (s, p) = (
+            Shape::Sphere { radius: 0.5 },
+            Shape::Plane {
+                half_extents: Some(Vec2::ONE),
+            },
+        );
         let mut m = Manifold::default();
         // Level with the plane, 0.4 m beyond its +x edge: overlap 0.1 at the edge.
-        collide(posed(&s, Vec3::new(1.4, 0.0, 0.0), Quat::IDENTITY), 0.5, posed(&p, Vec3::ZERO, Quat::IDENTITY), Some(Vec2::ONE), 0.0, &mut m);
+        collide(
+            posed(&s, Vec3::new(1.4, 0.0, 0.0), Quat::IDENTITY),
+            0.5,
+            posed(&p, Vec3::ZERO, Quat::IDENTITY),
+            Some(Vec2::ONE),
+            0.0,
+            &mut m,
+        );
         assert_eq!(m.len, 1);
         assert!((m.points[0].separation + 0.1).abs() < 1e-6);
         assert!((m.normal - Vec3::NEG_X).length() < 1e-6);
         // Off the rectangle entirely: nothing.
         let mut m = Manifold::default();
-        collide(posed(&s, Vec3::new(3.0, 0.0, 0.0), Quat::IDENTITY), 0.5, posed(&p, Vec3::ZERO, Quat::IDENTITY), Some(Vec2::ONE), 0.1, &mut m);
+        collide(
+            posed(&s, Vec3::new(3.0, 0.0, 0.0), Quat::IDENTITY),
+            0.5,
+            posed(&p, Vec3::ZERO, Quat::IDENTITY),
+            Some(Vec2::ONE),
+            0.1,
+            &mut m,
+        );
         assert_eq!(m.len, 0);
     }
 
     #[test]
     fn bounded_plane_is_two_sided() {
-        let (s, p) = (Shape::Sphere { radius: 0.5 }, Shape::Plane { half_extents: Some(Vec2::ONE) });
+        let (s, p) = (
+            Shape::Sphere { radius: 0.5 },
+            Shape::Plane {
+                half_extents: Some(Vec2::ONE),
+            },
+        );
         let mut m = Manifold::default();
-        collide(posed(&s, Vec3::new(0.0, -0.45, 0.0), Quat::IDENTITY), 0.5, posed(&p, Vec3::ZERO, Quat::IDENTITY), Some(Vec2::ONE), 0.0, &mut m);
-        assert!((m.normal - Vec3::Y).length() < 1e-6, "pushed down, away from the wall");
+        collide(
+            posed(&s, Vec3::new(0.0, -0.45, 0.0), Quat::IDENTITY),
+            0.5,
+            posed(&p, Vec3::ZERO, Quat::IDENTITY),
+            Some(Vec2::ONE),
+            0.0,
+            &mut m,
+        );
+        assert!(
+            (m.normal - Vec3::Y).length() < 1e-6,
+            "pushed down, away from the wall"
+        );
     }
 }

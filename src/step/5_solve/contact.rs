@@ -4,8 +4,8 @@
 use bevy::prelude::*;
 
 use super::softness::Softness;
-use crate::step::narrow_phase::Manifold;
 use crate::collider::Shape;
+use crate::step::narrow_phase::Manifold;
 use crate::world::{BodyState, ColliderEntry, STATIC, SolverBody};
 
 /// The solver body every static collider shares: never moves, infinite mass.
@@ -55,7 +55,11 @@ pub struct ContactConstraint {
 }
 
 pub(crate) fn body(bodies: &[SolverBody], i: u32) -> SolverBody {
-    if i == STATIC { STATIC_BODY } else { bodies[i as usize] }
+    if i == STATIC {
+        STATIC_BODY
+    } else {
+        bodies[i as usize]
+    }
 }
 
 fn store(bodies: &mut [SolverBody], i: u32, b: SolverBody) {
@@ -95,7 +99,13 @@ pub fn prepare_constraints(
     out.clear();
     for (mi, m) in manifolds.iter().enumerate() {
         let (ca, cb) = (&colliders[m.a as usize], &colliders[m.b as usize]);
-        let centre = |c: &ColliderEntry| if c.body == STATIC { c.pos } else { states[c.body as usize].x0 };
+        let centre = |c: &ColliderEntry| {
+            if c.body == STATIC {
+                c.pos
+            } else {
+                states[c.body as usize].x0
+            }
+        };
         let (sa, sb) = (body(bodies, ca.body), body(bodies, cb.body));
         let (t1, t2) = m.normal.any_orthonormal_pair();
         let against_static = sa.inv_mass == 0.0 || sb.inv_mass == 0.0;
@@ -137,7 +147,9 @@ pub fn warm_start(bodies: &mut [SolverBody], constraints: &[ContactConstraint]) 
     for c in constraints {
         let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
         let (ra, rb) = (c.ra, c.rb);
-        let p = c.normal * c.normal_impulse + c.tangent1 * c.tangent_impulse.x + c.tangent2 * c.tangent_impulse.y;
+        let p = c.normal * c.normal_impulse
+            + c.tangent1 * c.tangent_impulse.x
+            + c.tangent2 * c.tangent_impulse.y;
         apply(&mut a, &mut b, ra, rb, p);
         store(bodies, c.a, a);
         store(bodies, c.b, b);
@@ -168,7 +180,11 @@ pub fn solve(
             (s * inv_h, 1.0, 0.0)
         } else if use_bias {
             let soft = c.softness;
-            ((soft.bias_rate * s).max(-max_push_out), soft.mass_scale, soft.impulse_scale)
+            (
+                (soft.bias_rate * s).max(-max_push_out),
+                soft.mass_scale,
+                soft.impulse_scale,
+            )
         } else {
             (0.0, 1.0, 0.0)
         };
@@ -192,7 +208,13 @@ pub fn solve(
         let new = (old - c.tangent_mass * vt).clamp_length_max(limit);
         c.tangent_impulse = new;
         let dt = new - old;
-        apply(&mut a, &mut b, ra, rb, c.tangent1 * dt.x + c.tangent2 * dt.y);
+        apply(
+            &mut a,
+            &mut b,
+            ra,
+            rb,
+            c.tangent1 * dt.x + c.tangent2 * dt.y,
+        );
         store(bodies, c.a, a);
         store(bodies, c.b, b);
     }
@@ -200,7 +222,11 @@ pub fn solve(
 
 /// Restitution: points that were approaching faster than `threshold` and pushed get
 /// their normal velocity driven to −e times the approach speed.
-pub fn apply_restitution(bodies: &mut [SolverBody], constraints: &mut [ContactConstraint], threshold: f32) {
+pub fn apply_restitution(
+    bodies: &mut [SolverBody],
+    constraints: &mut [ContactConstraint],
+    threshold: f32,
+) {
     for c in constraints.iter_mut() {
         if c.restitution == 0.0 || c.relative_velocity > -threshold || c.max_normal_impulse == 0.0 {
             continue;

@@ -55,7 +55,10 @@ pub fn solve_contacts(
     let scratch = &mut *scratch;
     collect_active_bodies(world, &mut scratch.active);
     for &i in &scratch.active {
-        let (b, s) = (&world.bodies[i as usize], &mut world.solver_bodies[i as usize]);
+        let (b, s) = (
+            &world.bodies[i as usize],
+            &mut world.solver_bodies[i as usize],
+        );
         (s.dp, s.dq, s.v, s.w) = (Vec3::ZERO, Quat::IDENTITY, b.v0, b.w0);
     }
 
@@ -63,7 +66,11 @@ pub fn solve_contacts(
     // against something that cannot move may be twice as stiff.
     let hertz = settings.contact_hertz.min(0.25 / h);
     let soft = Softness::new(hertz, settings.contact_damping_ratio, h);
-    let soft_static = Softness::new((2.0 * hertz).min(0.25 / h), settings.contact_damping_ratio, h);
+    let soft_static = Softness::new(
+        (2.0 * hertz).min(0.25 / h),
+        settings.contact_damping_ratio,
+        h,
+    );
     prepare_constraints(
         &world.manifolds,
         &world.colliders,
@@ -78,7 +85,10 @@ pub fn solve_contacts(
         // IntegrateVelocities
         scratch.free.clear();
         for &i in &scratch.active {
-            let (b, s) = (&world.bodies[i as usize], &mut world.solver_bodies[i as usize]);
+            let (b, s) = (
+                &world.bodies[i as usize],
+                &mut world.solver_bodies[i as usize],
+            );
             let q = (s.dq * b.q0).normalize();
             let fs = free_substep(*integrator, b.kind, Inertial::of(b), q, s.v, s.w, h);
             s.v = fs.v.clamp_length_max(settings.max_linear_speed);
@@ -88,21 +98,40 @@ pub fn solve_contacts(
         // WarmStart, Solve
         warm_start(&mut world.solver_bodies, &world.constraints);
         for _ in 0..settings.iterations.max(1) {
-            solve(&mut world.solver_bodies, &mut world.constraints, h, settings.max_push_out, true);
+            solve(
+                &mut world.solver_bodies,
+                &mut world.constraints,
+                h,
+                settings.max_push_out,
+                true,
+            );
         }
         // IntegratePositions: the free increment plus the contact impulses' share.
         for (&i, fs) in scratch.active.iter().zip(&scratch.free) {
-            let (b, s) = (&world.bodies[i as usize], &mut world.solver_bodies[i as usize]);
+            let (b, s) = (
+                &world.bodies[i as usize],
+                &mut world.solver_bodies[i as usize],
+            );
             s.dp += fs.dx + h * (s.v - fs.v);
             s.dq = (rotate(fs.q, s.w - fs.w, h) * b.q0.inverse()).normalize();
         }
         // Relax
         for _ in 0..settings.iterations.max(1) {
-            solve(&mut world.solver_bodies, &mut world.constraints, h, settings.max_push_out, false);
+            solve(
+                &mut world.solver_bodies,
+                &mut world.constraints,
+                h,
+                settings.max_push_out,
+                false,
+            );
         }
     }
 
-    apply_restitution(&mut world.solver_bodies, &mut world.constraints, settings.restitution_threshold);
+    apply_restitution(
+        &mut world.solver_bodies,
+        &mut world.constraints,
+        settings.restitution_threshold,
+    );
     store_impulses(world);
 }
 
@@ -133,7 +162,10 @@ fn store_impulses(world: &mut PhysicsWorld) {
     }
     world.impulse_cache.clear();
     for m in &world.manifolds {
-        let key = (world.colliders[m.a as usize].entity, world.colliders[m.b as usize].entity);
+        let key = (
+            world.colliders[m.a as usize].entity,
+            world.colliders[m.b as usize].entity,
+        );
         world.impulse_cache.insert(key, *m);
     }
 }

@@ -14,13 +14,21 @@ pub struct Softness {
 impl Softness {
     pub fn new(hertz: f32, damping_ratio: f32, h: f32) -> Self {
         if hertz <= 0.0 {
-            return Self { bias_rate: 0.0, mass_scale: 1.0, impulse_scale: 0.0 };
+            return Self {
+                bias_rate: 0.0,
+                mass_scale: 1.0,
+                impulse_scale: 0.0,
+            };
         }
         let omega = std::f32::consts::TAU * hertz;
         let a1 = 2.0 * damping_ratio + h * omega;
         let a2 = h * omega * a1;
         let a3 = 1.0 / (1.0 + a2);
-        Self { bias_rate: omega / a1, mass_scale: a2 * a3, impulse_scale: a3 }
+        Self {
+            bias_rate: omega / a1,
+            mass_scale: a2 * a3,
+            impulse_scale: a3,
+        }
     }
 }
 
