@@ -6,7 +6,11 @@
 //! Warm starting: each new point looks up last step's impulses of the same pair and
 //! feature id.
 
+mod box_box;
+mod box_plane;
 mod manifold;
+mod polygon;
+mod sphere_box;
 mod sphere_plane;
 mod sphere_sphere;
 
@@ -53,12 +57,36 @@ fn sphere_plane(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
     sphere_plane::collide(a, *radius, b, *half_extents, margin, out);
 }
 
+fn sphere_box(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
+    let (Shape::Sphere { radius }, Shape::Cuboid { half_extents }) = (a.shape, b.shape) else {
+        return;
+    };
+    sphere_box::collide(a, *radius, b, *half_extents, margin, out);
+}
+
+fn box_box(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
+    let (Shape::Cuboid { half_extents: ha }, Shape::Cuboid { half_extents: hb }) =
+        (a.shape, b.shape)
+    else {
+        return;
+    };
+    box_box::collide(a, *ha, b, *hb, margin, out);
+}
+
+fn box_plane(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
+    let (Shape::Cuboid { half_extents }, Shape::Plane { half_extents: rect }) = (a.shape, b.shape)
+    else {
+        return;
+    };
+    box_plane::collide(a, *half_extents, b, *rect, margin, out);
+}
+
 /// The dispatch table, indexed by [`ShapeKind`] (A ≤ B). `None`: the pair never collides.
 const DISPATCH: [[Option<CollideFn>; 3]; 3] = [
-    //   Sphere               Cuboid  Plane
-    [Some(sphere_sphere), None, Some(sphere_plane)], // Sphere
-    [None, None, None],                              // Cuboid
-    [None, None, None],                              // Plane
+    //   Sphere             Cuboid           Plane
+    [Some(sphere_sphere), Some(sphere_box), Some(sphere_plane)], // Sphere
+    [None, Some(box_box), Some(box_plane)],                      // Cuboid
+    [None, None, None],                                          // Plane (static only)
 ];
 
 /// Collides two colliders, ordering them for the table. The manifold's normal points from
