@@ -64,3 +64,20 @@ pub fn ground(app: &mut App, p: Vec3, rot: Quat) -> Entity {
         ))
         .id()
 }
+
+/// A dynamic box with half extents `h`, mass `m` at `p`.
+pub fn cuboid(app: &mut App, h: Vec3, m: f32, p: Vec3) -> Entity {
+    app.world_mut()
+        .spawn((
+            RigidBody::Dynamic,
+            Collider::cuboid(h.x, h.y, h.z),
+            Mass(m),
+            Transform::from_translation(p),
+        ))
+        .id()
+}
+
+/// Tilt of a body's local +Y away from world +Y, radians.
+pub fn tilt(app: &App, e: Entity) -> f32 {
+    (rot(app, e) * Vec3::Y).angle_between(Vec3::Y)
+}

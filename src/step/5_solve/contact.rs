@@ -1,11 +1,12 @@
-//! Contact constraints: one row per point along the normal plus a two-row friction disc.
-//! Plain functions over the solver-body and constraint slices.
+//! Contact constraints, one per manifold: a soft non-penetration row per point, then a
+//! two-row friction disc per point. Plain functions over the solver-body and constraint
+//! slices; each constraint loads its two bodies once and stores them once.
 
 use bevy::prelude::*;
 
 use super::softness::Softness;
 use crate::collider::Shape;
-use crate::step::narrow_phase::Manifold;
+use crate::step::narrow_phase::{MAX_POINTS, Manifold};
 use crate::world::{BodyState, ColliderEntry, STATIC, SolverBody};
 
 /// The solver body every static collider shares: never moves, infinite mass.
@@ -18,25 +19,12 @@ pub const STATIC_BODY: SolverBody = SolverBody {
     inv_inertia: Mat3::ZERO,
 };
 
-/// One contact point prepared for the solver.
-#[derive(Clone, Copy, Debug)]
-pub struct ContactConstraint {
-    /// Body indices, or [`STATIC`].
-    pub a: u32,
-    pub b: u32,
-    /// Where the result goes: manifold index and point index.
-    pub manifold: u32,
-    pub point: u32,
-    pub normal: Vec3,
-    pub tangent1: Vec3,
-    pub tangent2: Vec3,
+/// One contact point of a [`ContactConstraint`].
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ConstraintPoint {
     /// Anchors from each body's centre to the contact point, world frame, start of step.
     pub ra: Vec3,
     pub rb: Vec3,
-    /// Whether each anchor turns with its body when measuring separation. A sphere's
-    /// contact point stays under its centre as it rolls, so its anchor does not turn.
-    pub turn_a: bool,
-    pub turn_b: bool,
     /// Separation at the start of the step minus n·(rb − ra), so that the current
     /// separation is this plus n·(cb − ca) for the moved anchor points ca, cb.
     pub adjusted_separation: f32,
@@ -45,13 +33,32 @@ pub struct ContactConstraint {
     pub normal_impulse: f32,
     /// Friction impulse along (tangent1, tangent2).
     pub tangent_impulse: Vec2,
-    /// Largest normal impulse seen this step; restitution only acts on points that pushed.
+    /// Largest normal impulse this step; restitution only acts on points that pushed.
     pub max_normal_impulse: f32,
+    /// Normal relative velocity before the point first pushed (for restitution).
+    pub relative_velocity: f32,
+}
+
+/// The contact of one manifold prepared for the solver.
+#[derive(Clone, Copy, Debug)]
+pub struct ContactConstraint {
+    /// Body indices, or [`STATIC`].
+    pub a: u32,
+    pub b: u32,
+    /// The manifold the results go back to.
+    pub manifold: u32,
+    pub normal: Vec3,
+    pub tangent1: Vec3,
+    pub tangent2: Vec3,
+    /// Whether each anchor turns with its body when measuring separation. A sphere's
+    /// contact point stays under its centre as it rolls, so its anchor does not turn.
+    pub turn_a: bool,
+    pub turn_b: bool,
     pub friction: f32,
     pub restitution: f32,
-    /// Normal relative velocity just before the point first pushed (for restitution).
-    pub relative_velocity: f32,
     pub softness: Softness,
+    pub points: [ConstraintPoint; MAX_POINTS],
+    pub len: usize,
 }
 
 pub(crate) fn body(bodies: &[SolverBody], i: u32) -> SolverBody {
@@ -85,15 +92,39 @@ fn apply(a: &mut SolverBody, b: &mut SolverBody, ra: Vec3, rb: Vec3, p: Vec3) {
     b.w += b.inv_inertia * rb.cross(p);
 }
 
-/// Builds the constraint of every manifold point. `soft` and `soft_static` are the
-/// softness between two moving bodies and against a static or kinematic body.
+/// Contact stiffness rule. A soft contact under load L sinks by L/(m_eff·ω²), and m_eff
+/// is about the lighter body's mass, so a heavy box on a light one sinks as far as the
+/// mass ratio says. The frequency therefore rises with the square root of the mass ratio
+/// (the spring is as stiff as if the light body weighed as much as the heavy one), and a
+/// contact with something that cannot move is twice as stiff; both are capped at
+/// `max_hertz` (a quarter of the substep rate) where the soft step stays smooth.
+pub fn contact_hertz(base: f32, max_hertz: f32, inv_mass_a: f32, inv_mass_b: f32) -> f32 {
+    let (lo, hi) = (inv_mass_a.min(inv_mass_b), inv_mass_a.max(inv_mass_b));
+    let hertz = if lo == 0.0 {
+        2.0 * base
+    } else {
+        base * (hi / lo).sqrt()
+    };
+    hertz.min(max_hertz)
+}
+
+/// The stiffness knobs for [`prepare_constraints`].
+#[derive(Clone, Copy, Debug)]
+pub struct Stiffness {
+    pub hertz: f32,
+    pub max_hertz: f32,
+    pub damping_ratio: f32,
+    /// Substep, s.
+    pub h: f32,
+}
+
+/// Builds the constraint of every manifold.
 pub fn prepare_constraints(
     manifolds: &[Manifold],
     colliders: &[ColliderEntry],
     states: &[BodyState],
     bodies: &[SolverBody],
-    soft: Softness,
-    soft_static: Softness,
+    stiffness: Stiffness,
     out: &mut Vec<ContactConstraint>,
 ) {
     out.clear();
@@ -108,22 +139,32 @@ pub fn prepare_constraints(
         };
         let (sa, sb) = (body(bodies, ca.body), body(bodies, cb.body));
         let (t1, t2) = m.normal.any_orthonormal_pair();
-        let against_static = sa.inv_mass == 0.0 || sb.inv_mass == 0.0;
-        for (pi, p) in m.points().iter().enumerate() {
+        let hertz = contact_hertz(
+            stiffness.hertz,
+            stiffness.max_hertz,
+            sa.inv_mass,
+            sb.inv_mass,
+        );
+        let mut c = ContactConstraint {
+            a: ca.body,
+            b: cb.body,
+            manifold: mi as u32,
+            normal: m.normal,
+            tangent1: t1,
+            tangent2: t2,
+            turn_a: !matches!(ca.shape, Shape::Sphere { .. }),
+            turn_b: !matches!(cb.shape, Shape::Sphere { .. }),
+            friction: m.friction,
+            restitution: m.restitution,
+            softness: Softness::new(hertz, stiffness.damping_ratio, stiffness.h),
+            points: [ConstraintPoint::default(); MAX_POINTS],
+            len: m.len,
+        };
+        for (cp, p) in c.points.iter_mut().zip(m.points()) {
             let (ra, rb) = (p.point - centre(ca), p.point - centre(cb));
-            let vrel = relative_velocity(&sa, &sb, ra, rb);
-            out.push(ContactConstraint {
-                a: ca.body,
-                b: cb.body,
-                manifold: mi as u32,
-                point: pi as u32,
-                normal: m.normal,
-                tangent1: t1,
-                tangent2: t2,
+            *cp = ConstraintPoint {
                 ra,
                 rb,
-                turn_a: !matches!(ca.shape, Shape::Sphere { .. }),
-                turn_b: !matches!(cb.shape, Shape::Sphere { .. }),
                 adjusted_separation: p.separation - m.normal.dot(rb - ra),
                 normal_mass: effective_mass(&sa, &sb, ra, rb, m.normal),
                 tangent_mass: Vec2::new(
@@ -133,12 +174,10 @@ pub fn prepare_constraints(
                 normal_impulse: p.normal_impulse,
                 tangent_impulse: Vec2::new(p.tangent_impulse.dot(t1), p.tangent_impulse.dot(t2)),
                 max_normal_impulse: 0.0,
-                friction: m.friction,
-                restitution: m.restitution,
-                relative_velocity: vrel.dot(m.normal),
-                softness: if against_static { soft_static } else { soft },
-            });
+                relative_velocity: relative_velocity(&sa, &sb, ra, rb).dot(m.normal),
+            };
         }
+        out.push(c);
     }
 }
 
@@ -146,19 +185,20 @@ pub fn prepare_constraints(
 pub fn warm_start(bodies: &mut [SolverBody], constraints: &[ContactConstraint]) {
     for c in constraints {
         let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
-        let (ra, rb) = (c.ra, c.rb);
-        let p = c.normal * c.normal_impulse
-            + c.tangent1 * c.tangent_impulse.x
-            + c.tangent2 * c.tangent_impulse.y;
-        apply(&mut a, &mut b, ra, rb, p);
+        for p in &c.points[..c.len] {
+            let t = c.tangent1 * p.tangent_impulse.x + c.tangent2 * p.tangent_impulse.y;
+            apply(&mut a, &mut b, p.ra, p.rb, c.normal * p.normal_impulse + t);
+        }
         store(bodies, c.a, a);
         store(bodies, c.b, b);
     }
 }
 
-/// One Gauss–Seidel pass over the contacts: normal rows (soft with bias, or rigid when
-/// relaxing), then the friction disc clamped to μ·λn. Accumulated impulses are clamped,
-/// never the increments. Speculative points (s > 0) may close their gap, not more.
+/// One Gauss–Seidel pass: for each manifold, the normal rows of all its points (soft with
+/// bias, or rigid when relaxing), then the friction disc of each point clamped to μ·λn
+/// with the updated normal impulses. Accumulated impulses are clamped, never increments.
+/// Speculative points (s > 0) may close their gap, not more. Impulses act at the
+/// start-of-step anchors; the separation follows the anchors as the bodies move and turn.
 pub fn solve(
     bodies: &mut [SolverBody],
     constraints: &mut [ContactConstraint],
@@ -169,52 +209,52 @@ pub fn solve(
     let inv_h = 1.0 / h;
     for c in constraints.iter_mut() {
         let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
-        // Impulses act at the start-of-step anchors (fixed Jacobian for the whole step);
-        // the separation follows the anchors as the bodies move and turn.
-        let (ra, rb) = (c.ra, c.rb);
-        let ca = if c.turn_a { a.dq * ra } else { ra };
-        let cb = if c.turn_b { b.dq * rb } else { rb };
-        let d = (b.dp - a.dp) + (cb - ca);
-        let s = c.normal.dot(d) + c.adjusted_separation;
-        let (bias, mass_scale, impulse_scale) = if s > 0.0 {
-            (s * inv_h, 1.0, 0.0)
-        } else if use_bias {
-            let soft = c.softness;
-            (
-                (soft.bias_rate * s).max(-max_push_out),
-                soft.mass_scale,
-                soft.impulse_scale,
-            )
-        } else {
-            (0.0, 1.0, 0.0)
-        };
-        let vn = relative_velocity(&a, &b, ra, rb).dot(c.normal);
-        let lambda = -c.normal_mass * mass_scale * (vn + bias) - impulse_scale * c.normal_impulse;
-        let new = (c.normal_impulse + lambda).max(0.0);
-        if c.normal_impulse == 0.0 && new > 0.0 {
-            // First push on this point: the approach speed that restitution reverses.
-            c.relative_velocity = c.relative_velocity.min(vn);
+        let dp = b.dp - a.dp;
+        for p in c.points[..c.len].iter_mut() {
+            let ca = if c.turn_a { a.dq * p.ra } else { p.ra };
+            let cb = if c.turn_b { b.dq * p.rb } else { p.rb };
+            let s = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
+            let (bias, mass_scale, impulse_scale) = if s > 0.0 {
+                (s * inv_h, 1.0, 0.0)
+            } else if use_bias {
+                let soft = c.softness;
+                (
+                    (soft.bias_rate * s).max(-max_push_out),
+                    soft.mass_scale,
+                    soft.impulse_scale,
+                )
+            } else {
+                (0.0, 1.0, 0.0)
+            };
+            let vn = relative_velocity(&a, &b, p.ra, p.rb).dot(c.normal);
+            let lambda =
+                -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
+            let new = (p.normal_impulse + lambda).max(0.0);
+            if p.normal_impulse == 0.0 && new > 0.0 {
+                // First push on this point: the approach speed that restitution reverses.
+                p.relative_velocity = p.relative_velocity.min(vn);
+            }
+            let dl = new - p.normal_impulse;
+            p.normal_impulse = new;
+            p.max_normal_impulse = p.max_normal_impulse.max(new);
+            apply(&mut a, &mut b, p.ra, p.rb, c.normal * dl);
         }
-        let dl = new - c.normal_impulse;
-        c.normal_impulse = new;
-        c.max_normal_impulse = c.max_normal_impulse.max(new);
-        apply(&mut a, &mut b, ra, rb, c.normal * dl);
-
-        // Friction: both tangent rows from the same velocity, then clamp to the disc.
-        let vr = relative_velocity(&a, &b, ra, rb);
-        let vt = Vec2::new(vr.dot(c.tangent1), vr.dot(c.tangent2));
-        let old = c.tangent_impulse;
-        let limit = c.friction * c.normal_impulse;
-        let new = (old - c.tangent_mass * vt).clamp_length_max(limit);
-        c.tangent_impulse = new;
-        let dt = new - old;
-        apply(
-            &mut a,
-            &mut b,
-            ra,
-            rb,
-            c.tangent1 * dt.x + c.tangent2 * dt.y,
-        );
+        for p in c.points[..c.len].iter_mut() {
+            // Both tangent rows from the same velocity, then clamp to the disc: a round cone.
+            let vr = relative_velocity(&a, &b, p.ra, p.rb);
+            let vt = Vec2::new(vr.dot(c.tangent1), vr.dot(c.tangent2));
+            let old = p.tangent_impulse;
+            let new = (old - p.tangent_mass * vt).clamp_length_max(c.friction * p.normal_impulse);
+            p.tangent_impulse = new;
+            let d = new - old;
+            apply(
+                &mut a,
+                &mut b,
+                p.ra,
+                p.rb,
+                c.tangent1 * d.x + c.tangent2 * d.y,
+            );
+        }
         store(bodies, c.a, a);
         store(bodies, c.b, b);
     }
@@ -227,19 +267,20 @@ pub fn apply_restitution(
     constraints: &mut [ContactConstraint],
     threshold: f32,
 ) {
-    for c in constraints.iter_mut() {
-        if c.restitution == 0.0 || c.relative_velocity > -threshold || c.max_normal_impulse == 0.0 {
-            continue;
-        }
+    for c in constraints.iter_mut().filter(|c| c.restitution > 0.0) {
         let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
-        let (ra, rb) = (c.ra, c.rb);
-        let vn = relative_velocity(&a, &b, ra, rb).dot(c.normal);
-        let lambda = -c.normal_mass * (vn + c.restitution * c.relative_velocity);
-        let new = (c.normal_impulse + lambda).max(0.0);
-        let dl = new - c.normal_impulse;
-        c.normal_impulse = new;
-        c.max_normal_impulse = c.max_normal_impulse.max(new);
-        apply(&mut a, &mut b, ra, rb, c.normal * dl);
+        for p in c.points[..c.len].iter_mut() {
+            if p.relative_velocity > -threshold || p.max_normal_impulse == 0.0 {
+                continue;
+            }
+            let vn = relative_velocity(&a, &b, p.ra, p.rb).dot(c.normal);
+            let lambda = -p.normal_mass * (vn + c.restitution * p.relative_velocity);
+            let new = (p.normal_impulse + lambda).max(0.0);
+            let dl = new - p.normal_impulse;
+            p.normal_impulse = new;
+            p.max_normal_impulse = p.max_normal_impulse.max(new);
+            apply(&mut a, &mut b, p.ra, p.rb, c.normal * dl);
+        }
         store(bodies, c.a, a);
         store(bodies, c.b, b);
     }

@@ -1,7 +1,7 @@
 //! Stage 5, solve: contact impulses with the soft step, substepped.
 //!
 //! Only bodies that touch something are solved; they restart from the beginning of the
-//! step and run [`SolverStage`]s in order. Everything else keeps stage 2's free motion.
+//! step and run the [`SolverStage`]s in order. Everything else keeps stage 2's free motion.
 
 mod contact;
 mod softness;
@@ -12,7 +12,10 @@ use crate::settings::{Integrator, SolverSettings};
 use crate::step::integrate::{FreeStep, Inertial, free_substep, rotate};
 use crate::world::{PhysicsWorld, STATIC};
 
-pub use contact::{ContactConstraint, apply_restitution, prepare_constraints, solve, warm_start};
+pub use contact::{
+    ConstraintPoint, ContactConstraint, Stiffness, apply_restitution, contact_hertz,
+    prepare_constraints, solve, warm_start,
+};
 pub use softness::Softness;
 
 /// The solver's stages in execution order. `PrepareContacts` runs once per step; the
@@ -62,77 +65,107 @@ pub fn solve_contacts(
         (s.dp, s.dq, s.v, s.w) = (Vec3::ZERO, Quat::IDENTITY, b.v0, b.w0);
     }
 
-    // PrepareContacts. Stiffness is capped at a quarter of the substep rate; a contact
-    // against something that cannot move may be twice as stiff.
-    let hertz = settings.contact_hertz.min(0.25 / h);
-    let soft = Softness::new(hertz, settings.contact_damping_ratio, h);
-    let soft_static = Softness::new(
-        (2.0 * hertz).min(0.25 / h),
-        settings.contact_damping_ratio,
+    run_stage(
+        SolverStage::PrepareContacts,
+        world,
+        scratch,
+        *integrator,
+        &settings,
         h,
     );
-    prepare_constraints(
-        &world.manifolds,
-        &world.colliders,
-        &world.bodies,
-        &world.solver_bodies,
-        soft,
-        soft_static,
-        &mut world.constraints,
-    );
-
     for _ in 0..n {
-        // IntegrateVelocities
-        scratch.free.clear();
-        for &i in &scratch.active {
-            let (b, s) = (
-                &world.bodies[i as usize],
-                &mut world.solver_bodies[i as usize],
-            );
-            let q = (s.dq * b.q0).normalize();
-            let fs = free_substep(*integrator, b.kind, Inertial::of(b), q, s.v, s.w, h);
-            s.v = fs.v.clamp_length_max(settings.max_linear_speed);
-            s.w = fs.w;
-            scratch.free.push(fs);
-        }
-        // WarmStart, Solve
-        warm_start(&mut world.solver_bodies, &world.constraints);
-        for _ in 0..settings.iterations.max(1) {
-            solve(
-                &mut world.solver_bodies,
-                &mut world.constraints,
-                h,
-                settings.max_push_out,
-                true,
-            );
-        }
-        // IntegratePositions: the free increment plus the contact impulses' share.
-        for (&i, fs) in scratch.active.iter().zip(&scratch.free) {
-            let (b, s) = (
-                &world.bodies[i as usize],
-                &mut world.solver_bodies[i as usize],
-            );
-            s.dp += fs.dx + h * (s.v - fs.v);
-            s.dq = (rotate(fs.q, s.w - fs.w, h) * b.q0.inverse()).normalize();
-        }
-        // Relax
-        for _ in 0..settings.iterations.max(1) {
-            solve(
-                &mut world.solver_bodies,
-                &mut world.constraints,
-                h,
-                settings.max_push_out,
-                false,
-            );
+        for stage in [
+            SolverStage::IntegrateVelocities,
+            SolverStage::WarmStart,
+            SolverStage::Solve,
+            SolverStage::IntegratePositions,
+            SolverStage::Relax,
+        ] {
+            run_stage(stage, world, scratch, *integrator, &settings, h);
         }
     }
-
-    apply_restitution(
-        &mut world.solver_bodies,
-        &mut world.constraints,
-        settings.restitution_threshold,
+    run_stage(
+        SolverStage::Restitution,
+        world,
+        scratch,
+        *integrator,
+        &settings,
+        h,
     );
-    store_impulses(world);
+    run_stage(
+        SolverStage::StoreImpulses,
+        world,
+        scratch,
+        *integrator,
+        &settings,
+        h,
+    );
+}
+
+/// Runs one solver stage over the whole contact set.
+fn run_stage(
+    stage: SolverStage,
+    world: &mut PhysicsWorld,
+    scratch: &mut SolverScratch,
+    integrator: Integrator,
+    settings: &SolverSettings,
+    h: f32,
+) {
+    let bodies = &mut world.solver_bodies;
+    let iterations = settings.iterations.max(1);
+    match stage {
+        SolverStage::PrepareContacts => {
+            // Stiffness capped at a quarter of the substep rate.
+            let stiffness = Stiffness {
+                hertz: settings.contact_hertz,
+                max_hertz: 0.25 / h,
+                damping_ratio: settings.contact_damping_ratio,
+                h,
+            };
+            let (m, c, s) = (&world.manifolds, &world.colliders, &world.bodies);
+            prepare_constraints(m, c, s, bodies, stiffness, &mut world.constraints);
+        }
+        SolverStage::IntegrateVelocities => {
+            scratch.free.clear();
+            for &i in &scratch.active {
+                let (b, s) = (&world.bodies[i as usize], &mut bodies[i as usize]);
+                let q = (s.dq * b.q0).normalize();
+                let fs = free_substep(integrator, b.kind, Inertial::of(b), q, s.v, s.w, h);
+                s.v = fs.v.clamp_length_max(settings.max_linear_speed);
+                s.w = fs.w;
+                scratch.free.push(fs);
+            }
+        }
+        SolverStage::WarmStart => warm_start(bodies, &world.constraints),
+        SolverStage::Solve | SolverStage::Relax => {
+            let use_bias = stage == SolverStage::Solve;
+            for _ in 0..iterations {
+                solve(
+                    bodies,
+                    &mut world.constraints,
+                    h,
+                    settings.max_push_out,
+                    use_bias,
+                );
+            }
+        }
+        SolverStage::IntegratePositions => {
+            // The free increment plus the contact impulses' share, h·Δv and h·Δω.
+            for (&i, fs) in scratch.active.iter().zip(&scratch.free) {
+                let (b, s) = (&world.bodies[i as usize], &mut bodies[i as usize]);
+                s.dp += fs.dx + h * (s.v - fs.v);
+                s.dq = (rotate(fs.q, s.w - fs.w, h) * b.q0.inverse()).normalize();
+            }
+        }
+        SolverStage::Restitution => {
+            apply_restitution(
+                bodies,
+                &mut world.constraints,
+                settings.restitution_threshold,
+            );
+        }
+        SolverStage::StoreImpulses => store_impulses(world),
+    }
 }
 
 /// Marks and lists the dynamic and kinematic bodies that any manifold touches.
@@ -156,9 +189,12 @@ fn collect_active_bodies(world: &mut PhysicsWorld, active: &mut Vec<u32>) {
 /// StoreImpulses: results into the manifolds (for readers) and the warm-start cache.
 fn store_impulses(world: &mut PhysicsWorld) {
     for c in &world.constraints {
-        let p = &mut world.manifolds[c.manifold as usize].points[c.point as usize];
-        p.normal_impulse = c.normal_impulse;
-        p.tangent_impulse = c.tangent1 * c.tangent_impulse.x + c.tangent2 * c.tangent_impulse.y;
+        let m = &mut world.manifolds[c.manifold as usize];
+        for (mp, cp) in m.points_mut().iter_mut().zip(&c.points) {
+            mp.normal_impulse = cp.normal_impulse;
+            mp.tangent_impulse =
+                c.tangent1 * cp.tangent_impulse.x + c.tangent2 * cp.tangent_impulse.y;
+        }
     }
     world.impulse_cache.clear();
     for m in &world.manifolds {
