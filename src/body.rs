@@ -10,7 +10,7 @@ use bevy::prelude::*;
 /// How a body takes part in the simulation.
 #[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[reflect(Component)]
-#[require(Transform, Velocity)]
+#[require(Transform, Velocity, SleepTimer)]
 pub enum RigidBody {
     /// Moved by forces and contacts; its mass comes from [`Mass`] or the collider's volume.
     #[default]
@@ -100,3 +100,18 @@ pub struct PhysicsRejected {
     pub field: &'static str,
     pub reason: String,
 }
+
+/// Marks a body that is asleep: it keeps its place and costs only a wake check. Tumble adds
+/// and removes it (see [`SleepSettings`](crate::settings::SleepSettings)); remove it to
+/// wake a body, insert `Sleeping::default()` to start one asleep. Changing a sleeping
+/// body's `Transform`, `Velocity` or `ExternalForce` wakes it.
+#[derive(Component, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Sleeping {
+    /// When it fell asleep; later changes to its components are the user's and wake it.
+    pub(crate) since: bevy::ecs::change_detection::Tick,
+}
+
+/// How long (s) a body has been slow enough to sleep. Kept by tumble.
+#[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq)]
+#[reflect(Component)]
+pub struct SleepTimer(pub f32);

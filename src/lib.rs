@@ -9,13 +9,15 @@
 //! 3. **broad phase** — candidate pairs from swept, fattened bounding boxes
 //! 4. **narrow phase** — contact manifolds, dispatched over shape pairs
 //! 5. **solve** — soft-step contact impulses with substeps, friction and restitution
-//! 6. **writeback** — arrays back to `Transform` / `Velocity`
+//! 6. **writeback** — arrays back to `Transform` / `Velocity`, collision messages
+//! 7. **sleep** — still islands fall asleep, touched sleepers wake
 //!
 //! Everything between prepare and writeback works on plain slices in [`PhysicsWorld`]
 //! and is tested without Bevy.
 
 pub mod body;
 pub mod collider;
+pub mod events;
 pub mod plugin;
 pub mod settings;
 pub mod step;
@@ -28,10 +30,11 @@ pub use world::PhysicsWorld;
 pub mod prelude {
     pub use crate::body::{
         AngularDamping, ExternalForce, Friction, LinearDamping, Mass, PhysicsRejected, Restitution,
-        RigidBody, Velocity,
+        RigidBody, SleepTimer, Sleeping, Velocity,
     };
     pub use crate::collider::Collider;
+    pub use crate::events::{CollisionEnded, CollisionStarted, Contact};
     pub use crate::plugin::{PhysicsSystems, TumblePlugin};
-    pub use crate::settings::{Gravity, Integrator, SolverSettings};
+    pub use crate::settings::{Gravity, Integrator, SleepSettings, SolverSettings};
     pub use crate::world::PhysicsWorld;
 }

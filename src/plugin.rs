@@ -4,8 +4,9 @@ use bevy::prelude::*;
 
 use crate::body::*;
 use crate::collider::Collider;
-use crate::settings::{Gravity, Integrator, SolverSettings};
-use crate::step::{broad_phase, integrate, narrow_phase, prepare, solve, writeback};
+use crate::events;
+use crate::settings::{Gravity, Integrator, SleepSettings, SolverSettings};
+use crate::step::{broad_phase, integrate, narrow_phase, prepare, sleep, solve, writeback};
 use crate::world::PhysicsWorld;
 
 /// The stages of one physics step, chained in `FixedUpdate` in this order. Order your own
@@ -23,8 +24,10 @@ pub enum PhysicsSystems {
     NarrowPhase,
     /// Contact impulses (substepped soft step, friction, restitution).
     Solve,
-    /// Solver arrays → `Transform` / `Velocity`.
+    /// Solver arrays → `Transform` / `Velocity`; collision messages.
     Writeback,
+    /// Still islands fall asleep; touched sleepers wake.
+    Sleep,
 }
 
 /// Adds rigid-body physics. Steps in `FixedUpdate` at `hz` (60 by default); a
@@ -46,6 +49,9 @@ impl Plugin for TumblePlugin {
             .init_resource::<Gravity>()
             .init_resource::<Integrator>()
             .init_resource::<SolverSettings>()
+            .init_resource::<SleepSettings>()
+            .add_message::<events::CollisionStarted>()
+            .add_message::<events::CollisionEnded>()
             .init_resource::<PhysicsWorld>()
             .register_type::<RigidBody>()
             .register_type::<Velocity>()
@@ -59,6 +65,8 @@ impl Plugin for TumblePlugin {
             .register_type::<Gravity>()
             .register_type::<Integrator>()
             .register_type::<SolverSettings>()
+            .register_type::<SleepSettings>()
+            .register_type::<SleepTimer>()
             .configure_sets(
                 FixedUpdate,
                 (
@@ -68,6 +76,7 @@ impl Plugin for TumblePlugin {
                     PhysicsSystems::NarrowPhase,
                     PhysicsSystems::Solve,
                     PhysicsSystems::Writeback,
+                    PhysicsSystems::Sleep,
                 )
                     .chain(),
             )
@@ -79,7 +88,13 @@ impl Plugin for TumblePlugin {
                     broad_phase::find_pairs.in_set(PhysicsSystems::BroadPhase),
                     narrow_phase::collide_pairs.in_set(PhysicsSystems::NarrowPhase),
                     solve::solve_contacts.in_set(PhysicsSystems::Solve),
-                    writeback::writeback_bodies.in_set(PhysicsSystems::Writeback),
+                    (
+                        writeback::writeback_bodies,
+                        events::write_collision_messages,
+                    )
+                        .chain()
+                        .in_set(PhysicsSystems::Writeback),
+                    sleep::update_sleep.in_set(PhysicsSystems::Sleep),
                 ),
             );
     }

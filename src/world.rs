@@ -55,6 +55,8 @@ pub struct BodyState {
     pub forces: ForceModel,
     /// The body touches something this step, so the solver re-integrates it with contacts.
     pub in_contact: bool,
+    /// How long it has been slow enough to sleep, s.
+    pub sleep_time: f32,
 }
 
 impl BodyState {
@@ -69,6 +71,8 @@ pub struct ColliderEntry {
     pub entity: Entity,
     /// Index into the body arrays, or [`STATIC`].
     pub body: u32,
+    /// A sleeping body, standing in as a static collider this step.
+    pub asleep: bool,
     pub shape: Shape,
     /// Pose at the start of the step.
     pub pos: Vec3,
@@ -97,6 +101,10 @@ pub struct PhysicsWorld {
     pub constraints: Vec<ContactConstraint>,
     /// Last step's accumulated impulses by entity pair, for warm starting.
     pub impulse_cache: HashMap<(Entity, Entity), Manifold>,
+    /// Sleeping bodies that an awake body touched this step: they wake.
+    pub wake: Vec<Entity>,
+    /// Pairs (ordered by entity) that touched last step, for the collision messages.
+    pub touching: bevy::platform::collections::HashSet<(Entity, Entity)>,
     /// The fixed step of the current step, seconds.
     pub dt: f32,
     /// Steps taken since the plugin started.

@@ -40,6 +40,7 @@ fn scene(seed: u64) -> Vec<ColliderEntry> {
             ColliderEntry {
                 entity: Entity::PLACEHOLDER,
                 body,
+                asleep: false,
                 shape,
                 pos,
                 rot,

@@ -2,27 +2,34 @@
 //! arrays of [`PhysicsWorld`]. A body with invalid input is left out, tagged with
 //! [`PhysicsRejected`], and reported once in the log by entity and field.
 
+use bevy::ecs::change_detection::Tick;
+use bevy::ecs::query::QueryData;
+use bevy::ecs::system::SystemChangeTick;
 use bevy::prelude::*;
 
 use crate::body::*;
 use crate::collider::{Collider, Shape};
-use crate::settings::{Gravity, SolverSettings};
+use crate::settings::{Gravity, SleepSettings, SolverSettings};
 use crate::world::{BodyState, ColliderEntry, ForceModel, PhysicsWorld, STATIC, SolverBody};
 
 /// The components prepare reads from each body or collider entity.
-pub type BodyQueryData = (
-    Entity,
-    &'static Transform,
-    Option<&'static Collider>,
-    Option<&'static RigidBody>,
-    Option<&'static Velocity>,
-    Option<&'static Mass>,
-    Option<&'static Restitution>,
-    Option<&'static Friction>,
-    Option<&'static ExternalForce>,
-    Option<&'static LinearDamping>,
-    Option<&'static AngularDamping>,
-);
+#[derive(QueryData)]
+#[query_data(mutable)]
+pub struct BodyItem {
+    entity: Entity,
+    transform: Ref<'static, Transform>,
+    collider: Option<&'static Collider>,
+    kind: Option<&'static RigidBody>,
+    velocity: Option<Ref<'static, Velocity>>,
+    mass: Option<&'static Mass>,
+    restitution: Option<&'static Restitution>,
+    friction: Option<&'static Friction>,
+    force: Option<Ref<'static, ExternalForce>>,
+    linear_damping: Option<&'static LinearDamping>,
+    angular_damping: Option<&'static AngularDamping>,
+    sleeping: Option<&'static mut Sleeping>,
+    sleep_timer: Option<&'static SleepTimer>,
+}
 
 /// Which entities prepare gathers: bodies and colliders that were not rejected.
 pub type BodyQueryFilter = (
@@ -30,31 +37,37 @@ pub type BodyQueryFilter = (
     Or<(With<RigidBody>, With<Collider>)>,
 );
 
-/// Gathers every valid body and collider into [`PhysicsWorld`] for this step.
+/// Gathers every valid body and collider into [`PhysicsWorld`] for this step. A sleeping
+/// body goes in as a static collider, unless the user changed it since it fell asleep.
+#[allow(clippy::too_many_arguments)]
 pub fn prepare_bodies(
     mut commands: Commands,
     mut world: ResMut<PhysicsWorld>,
     time: Res<Time>,
     gravity: Res<Gravity>,
     settings: Res<SolverSettings>,
-    query: Query<BodyQueryData, BodyQueryFilter>,
+    sleep: Res<SleepSettings>,
+    ticks: SystemChangeTick,
+    mut query: Query<BodyItem, BodyQueryFilter>,
 ) {
     let world = &mut *world;
     world.dt = time.delta_secs();
     world.solver_bodies.clear();
     world.bodies.clear();
     world.colliders.clear();
+    world.wake.clear();
 
-    for (entity, tf, collider, kind, vel, mass, rest, fric, force, lin_d, ang_d) in &query {
-        let kind = kind.copied().unwrap_or(RigidBody::Static);
-        let vel = if kind == RigidBody::Static {
-            Velocity::ZERO
-        } else {
-            vel.copied().unwrap_or_default()
+    for item in &mut query {
+        let entity = item.entity;
+        let tf = *item.transform;
+        let kind = item.kind.copied().unwrap_or(RigidBody::Static);
+        let vel = match (&item.velocity, kind) {
+            (Some(v), RigidBody::Dynamic | RigidBody::Kinematic) => **v,
+            _ => Velocity::ZERO,
         };
-        let shape = collider.map(|c| c.shape);
-        let checked =
-            validate(tf, &vel, kind, mass, shape.as_ref()).and_then(|()| validate_force(force));
+        let shape = item.collider.map(|c| c.shape);
+        let checked = validate(&tf, &vel, kind, item.mass, shape.as_ref())
+            .and_then(|()| validate_force(item.force.as_deref()));
         if let Err((field, reason)) = checked {
             error!(
                 "tumble: body {entity} left out of the simulation: {field} is invalid ({reason})"
@@ -64,25 +77,48 @@ pub fn prepare_bodies(
                 .insert(PhysicsRejected { field, reason });
             continue;
         }
+        let mut asleep = false;
+        if let Some(mut sleeping) = item.sleeping {
+            if sleeping.is_added() {
+                sleeping.since = ticks.this_run();
+            }
+            let since = sleeping.since;
+            let touched = |t: Tick| t.is_newer_than(since, ticks.this_run());
+            let user_changed = touched(item.transform.last_changed())
+                || item
+                    .velocity
+                    .as_ref()
+                    .is_some_and(|v| touched(v.last_changed()))
+                || item
+                    .force
+                    .as_ref()
+                    .is_some_and(|f| touched(f.last_changed()));
+            if sleep.enabled && !user_changed {
+                asleep = true;
+            } else {
+                commands.entity(entity).remove::<Sleeping>();
+            }
+        }
         let rot = tf.rotation.normalize();
-        let body = if kind == RigidBody::Static {
+        let body = if kind == RigidBody::Static || asleep {
             STATIC
         } else {
             let index = world.bodies.len() as u32;
-            let (state, solver) = gather_body(
+            let (mut state, solver) = gather_body(
                 entity,
                 kind,
                 tf.translation,
                 rot,
                 vel,
-                mass,
+                item.mass,
                 shape,
-                force,
-                lin_d,
-                ang_d,
+                item.force.as_deref(),
+                item.linear_damping,
+                item.angular_damping,
                 gravity.0,
                 &settings,
             );
+            state.sleep_time = item.sleep_timer.map_or(0.0, |t| t.0);
             world.bodies.push(state);
             world.solver_bodies.push(solver);
             index
@@ -91,11 +127,12 @@ pub fn prepare_bodies(
             world.colliders.push(ColliderEntry {
                 entity,
                 body,
+                asleep,
                 shape,
                 pos: tf.translation,
                 rot,
-                friction: fric.map_or(DEFAULT_FRICTION, |f| f.0),
-                restitution: rest.map_or(0.0, |r| r.0),
+                friction: item.friction.map_or(DEFAULT_FRICTION, |f| f.0),
+                restitution: item.restitution.map_or(0.0, |r| r.0),
                 aabb_min: Vec3::ZERO,
                 aabb_max: Vec3::ZERO,
             });
@@ -150,6 +187,7 @@ fn gather_body(
         inv_inertia,
         forces,
         in_contact: false,
+        sleep_time: 0.0,
     };
     let solver = SolverBody {
         v,

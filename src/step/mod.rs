@@ -1,5 +1,5 @@
 //! The physics step, one stage per module, in execution order (the file names carry the
-//! order). Each stage is one system in [`PhysicsSystems`](crate::PhysicsSystems); the ECS is
+//! order; sleeping comes last). Each stage is one system in [`PhysicsSystems`](crate::PhysicsSystems); the ECS is
 //! touched only by prepare (1) and writeback (6). Stages 2–5 are plain functions over the
 //! slices in [`PhysicsWorld`](crate::PhysicsWorld).
 
@@ -20,3 +20,6 @@ pub mod solve;
 
 #[path = "6_writeback.rs"]
 pub mod writeback;
+
+#[path = "7_sleep.rs"]
+pub mod sleep;

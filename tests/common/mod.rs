@@ -8,8 +8,19 @@ use tumble::prelude::*;
 
 pub const H: f32 = 1.0 / 60.0;
 
-/// MinimalPlugins + TransformPlugin + TumblePlugin, one fixed step per update.
+/// MinimalPlugins + TransformPlugin + TumblePlugin, one fixed step per update, with
+/// sleeping off so that it hides nothing.
 pub fn app() -> App {
+    let mut app = app_with_sleeping();
+    app.insert_resource(SleepSettings {
+        enabled: false,
+        ..default()
+    });
+    app
+}
+
+/// The same with the default settings, sleeping on.
+pub fn app_with_sleeping() -> App {
     let mut app = App::new();
     app.add_plugins((MinimalPlugins, TransformPlugin, TumblePlugin::default()))
         .insert_resource(TimeUpdateStrategy::FixedTimesteps(1));

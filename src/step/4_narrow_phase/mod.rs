@@ -130,10 +130,22 @@ pub fn collide_pairs(mut world: ResMut<PhysicsWorld>, settings: Res<SolverSettin
         if !da && !db {
             continue;
         }
+        // Something awake reaches a sleeping body: it wakes next step; this step it
+        // stands still like a static one.
+        let wake = if a.asleep {
+            Some(a.entity)
+        } else if b.asleep {
+            Some(b.entity)
+        } else {
+            None
+        };
         let reach = dt * (closing_speed(world, a) + closing_speed(world, b));
         let Some(mut m) = collide(a, ia, b, ib, settings.speculative_margin + reach) else {
             continue;
         };
+        if let Some(e) = wake {
+            world.wake.push(e);
+        }
         m.friction = (a.friction * b.friction).max(0.0).sqrt();
         m.restitution = a.restitution.max(b.restitution);
         let (ea, eb) = (
