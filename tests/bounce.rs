@@ -6,6 +6,7 @@
 //!   up to one substep before the true impact: speed off by ≤ g·hs, height by ≤ 2·g·hs/v;
 //! - semi-implicit Euler loses ½·g²·hs² of energy per substep of flight: over the 2v/g
 //!   of a bounce's flight that is 2·g·hs/v of the apex height.
+//!
 //! So each apex ratio is e² within 4·g·hs/v (we allow 6·g·hs/v), and the n-th apex is
 //! e^(2n)·h0 within the sum of those bounds.
 //! Only bounces faster than the 1 m/s restitution threshold count.

@@ -226,10 +226,9 @@ pub fn validate(
     if !vel.angular.is_finite() {
         return Err(("Velocity.angular", format!("{}", vel.angular)));
     }
-    if kind == RigidBody::Dynamic {
-        if let Some(m) = mass.filter(|m| !(m.0.is_finite() && m.0 > 0.0)) {
-            return Err(("Mass", format!("{} kg: mass must be finite and > 0", m.0)));
-        }
+    if let Some(m) = mass.filter(|m| kind == RigidBody::Dynamic && !(m.0.is_finite() && m.0 > 0.0))
+    {
+        return Err(("Mass", format!("{} kg: mass must be finite and > 0", m.0)));
     }
     if let Some(shape) = shape {
         shape

@@ -67,7 +67,7 @@ pub fn corner(h: Vec3, id: u32) -> Vec3 {
 /// Face `f` of a box (axis f/2, + side for even f) as a quad in world space, its vertices
 /// in order around the face, ids = corner ids.
 pub fn box_face(pos: Vec3, rot: Mat3, h: Vec3, f: usize) -> Polygon {
-    let (k, sign) = (f / 2, f % 2 == 0);
+    let (k, sign) = (f / 2, f.is_multiple_of(2));
     let (u, v) = ((k + 1) % 3, (k + 2) % 3);
     let mut poly = Polygon::default();
     for (su, sv) in [(1, 1), (0, 1), (0, 0), (1, 0)] {
