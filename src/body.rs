@@ -8,7 +8,18 @@
 use bevy::prelude::*;
 
 /// How a body takes part in the simulation.
-#[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(
+    Component,
+    Reflect,
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    serde::Serialize,
+    serde::Deserialize,
+)]
 #[reflect(Component)]
 #[require(Transform, Velocity, SleepTimer)]
 pub enum RigidBody {

@@ -19,6 +19,7 @@ pub mod body;
 pub mod collider;
 pub mod events;
 pub mod plugin;
+pub mod scene;
 pub mod settings;
 pub mod step;
 pub mod world;

@@ -17,7 +17,19 @@ impl Default for Gravity {
 ///
 /// Contacts are velocity impulses in every case; see `step/2_integrate` for how each
 /// integrator composes with the contact solve.
-#[derive(Resource, Reflect, Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(
+    Resource,
+    Reflect,
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    serde::Serialize,
+    serde::Deserialize,
+)]
 #[reflect(Resource)]
 pub enum Integrator {
     /// The 2015 engine's method: position from the old velocity, velocity from the old

@@ -1,0 +1,189 @@
+//! The scene file format. Every field but the bodies has a default, so a scene file says
+//! only what it needs.
+
+use bevy::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::body::RigidBody;
+use crate::settings::Integrator;
+
+/// One scene file.
+#[derive(TypePath, Serialize, Deserialize, Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "viz", derive(bevy::asset::Asset))]
+#[serde(deny_unknown_fields)]
+pub struct SceneDesc {
+    pub name: String,
+    #[serde(default)]
+    pub description: String,
+    #[serde(default)]
+    pub settings: SceneSettings,
+    /// Where the demo's camera looks from.
+    #[serde(default)]
+    pub camera: CameraDesc,
+    #[serde(default)]
+    pub planes: Vec<PlaneDesc>,
+    #[serde(default)]
+    pub bodies: Vec<BodyGroup>,
+}
+
+/// Simulation settings a scene asks for.
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct SceneSettings {
+    pub gravity: Vec3,
+    pub integrator: Integrator,
+    /// Fixed steps per second.
+    pub hz: f64,
+    pub substeps: u32,
+    pub iterations: u32,
+}
+
+impl Default for SceneSettings {
+    fn default() -> Self {
+        Self {
+            gravity: Vec3::new(0.0, -9.81, 0.0),
+            integrator: Integrator::default(),
+            hz: 60.0,
+            substeps: 4,
+            iterations: 1,
+        }
+    }
+}
+
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct CameraDesc {
+    pub focus: Vec3,
+    pub distance: f32,
+    /// Degrees.
+    pub yaw: f32,
+    pub pitch: f32,
+}
+
+impl Default for CameraDesc {
+    fn default() -> Self {
+        Self {
+            focus: Vec3::new(0.0, 1.0, 0.0),
+            distance: 16.0,
+            yaw: 20.0,
+            pitch: 25.0,
+        }
+    }
+}
+
+/// A static plane: infinite, or a rectangle (walls, slopes, ramps).
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct PlaneDesc {
+    pub position: Vec3,
+    pub normal: Vec3,
+    /// Turn about the normal, degrees (orients a rectangle).
+    pub spin_deg: f32,
+    /// Half extents of the rectangle along the plane's local x and z; `None`: infinite.
+    pub half_extents: Option<Vec2>,
+    pub friction: f32,
+    pub restitution: f32,
+}
+
+impl Default for PlaneDesc {
+    fn default() -> Self {
+        Self {
+            position: Vec3::ZERO,
+            normal: Vec3::Y,
+            spin_deg: 0.0,
+            half_extents: None,
+            friction: 0.5,
+            restitution: 0.0,
+        }
+    }
+}
+
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
+pub enum ShapeDesc {
+    Sphere(f32),
+    /// Half extents.
+    Cuboid(Vec3),
+}
+
+/// One body.
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct BodyDesc {
+    pub shape: ShapeDesc,
+    pub kind: RigidBody,
+    pub position: Vec3,
+    /// Euler angles XYZ, degrees.
+    pub rotation_deg: Vec3,
+    pub velocity: Vec3,
+    pub angular_velocity: Vec3,
+    /// kg; when absent, `density` (or water's) times the volume.
+    pub mass: Option<f32>,
+    pub density: Option<f32>,
+    pub friction: Option<f32>,
+    pub restitution: Option<f32>,
+}
+
+impl Default for BodyDesc {
+    fn default() -> Self {
+        Self {
+            shape: ShapeDesc::Cuboid(Vec3::splat(0.5)),
+            kind: RigidBody::Dynamic,
+            position: Vec3::ZERO,
+            rotation_deg: Vec3::ZERO,
+            velocity: Vec3::ZERO,
+            angular_velocity: Vec3::ZERO,
+            mass: None,
+            density: None,
+            friction: None,
+            restitution: None,
+        }
+    }
+}
+
+/// A body or a generated group of copies of a template body (`body`), placed relative to
+/// the template's position.
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+pub enum BodyGroup {
+    Single(BodyDesc),
+    /// count.x × count.y × count.z copies `spacing` apart.
+    Grid {
+        body: BodyDesc,
+        count: UVec3,
+        spacing: Vec3,
+    },
+    /// `count` copies stacked along +Y `spacing` apart, every other one shifted by `jitter`.
+    Stack {
+        body: BodyDesc,
+        count: u32,
+        spacing: f32,
+        #[serde(default)]
+        jitter: Vec3,
+    },
+    /// A square pyramid: layers of base², (base−1)², …, 1 copies `spacing` apart; `flat`
+    /// makes it a one-deep wall (rows of base, base−1, …).
+    Pyramid {
+        body: BodyDesc,
+        base: u32,
+        spacing: f32,
+        #[serde(default)]
+        flat: bool,
+    },
+    /// `count` copies at seeded random positions in the box `min`..`max`, random turns;
+    /// the mass of each is scaled by a random factor in `mass_range` when given.
+    Pile {
+        body: BodyDesc,
+        count: u32,
+        seed: u64,
+        min: Vec3,
+        max: Vec3,
+        #[serde(default)]
+        mass_range: Option<Vec2>,
+    },
+    /// A row of `count` copies `spacing` apart along `direction`.
+    Row {
+        body: BodyDesc,
+        count: u32,
+        spacing: f32,
+        direction: Vec3,
+    },
+}

@@ -1,0 +1,150 @@
+//! Scenes as data: the RON files in `assets/scenes/` describe settings, static planes and
+//! bodies (single or generated: grids, stacks, pyramids, seeded random piles). The demo
+//! loads them through the asset system; tests and benches parse the very same files and
+//! spawn them with [`SceneDesc::spawn`], no asset server needed.
+
+mod desc;
+mod generate;
+#[cfg(feature = "viz")]
+mod loader;
+
+pub use desc::*;
+pub use generate::expand_group;
+#[cfg(feature = "viz")]
+pub use loader::SceneLoader;
+
+use bevy::prelude::*;
+
+use crate::body::*;
+use crate::collider::Collider;
+use crate::settings::{Gravity, Integrator, SolverSettings};
+
+/// Marks an entity spawned from a scene, so a scene switch can despawn exactly those.
+#[derive(Component, Clone, Copy, Debug, Default)]
+pub struct SceneEntity;
+
+/// Why a scene file could not be read: the file and, for syntax errors, line and column.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    #[error("could not read scene file: {0}")]
+    Io(#[from] std::io::Error),
+    #[error("{path}:{line}:{col}: {message}")]
+    Parse {
+        path: String,
+        line: usize,
+        col: usize,
+        message: String,
+    },
+}
+
+impl SceneDesc {
+    /// Parses a scene from RON text; `path` names the file in errors.
+    pub fn from_ron(text: &str, path: &str) -> Result<Self, SceneError> {
+        ron::from_str(text).map_err(|e: ron::error::SpannedError| SceneError::Parse {
+            path: path.to_string(),
+            line: e.span.start.line,
+            col: e.span.start.col,
+            message: e.code.to_string(),
+        })
+    }
+
+    /// Reads and parses a scene file.
+    pub fn load(path: impl AsRef<std::path::Path>) -> Result<Self, SceneError> {
+        let path = path.as_ref();
+        Self::from_ron(&std::fs::read_to_string(path)?, &path.display().to_string())
+    }
+
+    /// Every body the scene describes, with its groups expanded.
+    pub fn expanded_bodies(&self) -> Vec<BodyDesc> {
+        self.bodies.iter().flat_map(expand_group).collect()
+    }
+
+    /// Applies the scene's settings to the simulation resources.
+    pub fn apply_settings(&self, commands: &mut Commands) {
+        let s = self.settings;
+        commands.insert_resource(Gravity(s.gravity));
+        commands.insert_resource(s.integrator);
+        commands.insert_resource(Time::<Fixed>::from_hz(s.hz));
+        let solver = SolverSettings {
+            substeps: s.substeps,
+            iterations: s.iterations,
+            ..default()
+        };
+        commands.insert_resource(solver);
+    }
+
+    /// Spawns the scene's settings, planes and bodies. Returns the body entities.
+    pub fn spawn(&self, commands: &mut Commands) -> Vec<Entity> {
+        self.apply_settings(commands);
+        for plane in &self.planes {
+            commands.spawn(plane_bundle(plane));
+        }
+        self.expanded_bodies()
+            .iter()
+            .map(|b| commands.spawn(body_bundle(b)).id())
+            .collect()
+    }
+
+    /// Spawns into a `World` directly (tests, benches).
+    pub fn spawn_into(&self, world: &mut World) -> Vec<Entity> {
+        let ids = self.spawn(&mut world.commands());
+        world.flush();
+        ids
+    }
+}
+
+fn plane_bundle(p: &PlaneDesc) -> impl Bundle {
+    let collider = match p.half_extents {
+        Some(h) => Collider::plane_rect(h.x, h.y),
+        None => Collider::plane(),
+    };
+    let rotation = Quat::from_rotation_arc(Vec3::Y, p.normal.normalize_or(Vec3::Y));
+    let rotation =
+        Quat::from_axis_angle(p.normal.normalize_or(Vec3::Y), p.spin_deg.to_radians()) * rotation;
+    (
+        SceneEntity,
+        Name::new("plane"),
+        collider,
+        Transform::from_translation(p.position).with_rotation(rotation),
+        Friction(p.friction),
+        Restitution(p.restitution),
+    )
+}
+
+fn body_bundle(b: &BodyDesc) -> impl Bundle {
+    let collider = match b.shape {
+        ShapeDesc::Sphere(r) => Collider::sphere(r),
+        ShapeDesc::Cuboid(h) => Collider::cuboid(h.x, h.y, h.z),
+    };
+    let mass = b
+        .mass
+        .unwrap_or_else(|| collider.shape.volume() * b.density.unwrap_or(DEFAULT_DENSITY));
+    let r = b.rotation_deg * (std::f32::consts::PI / 180.0);
+    (
+        SceneEntity,
+        b.kind,
+        collider,
+        Mass(mass),
+        Transform::from_translation(b.position).with_rotation(Quat::from_euler(
+            EulerRot::XYZ,
+            r.x,
+            r.y,
+            r.z,
+        )),
+        Velocity {
+            linear: b.velocity,
+            angular: b.angular_velocity,
+        },
+        Friction(b.friction.unwrap_or(DEFAULT_FRICTION)),
+        Restitution(b.restitution.unwrap_or(0.0)),
+    )
+}
+
+/// The integrator names scene files use.
+pub fn integrator_name(i: Integrator) -> &'static str {
+    match i {
+        Integrator::ExplicitEuler => "explicit Euler",
+        Integrator::SemiImplicitEuler => "semi-implicit Euler",
+        Integrator::Rk4 => "RK4",
+    }
+}
