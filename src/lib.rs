@@ -18,10 +18,14 @@
 pub mod body;
 pub mod collider;
 pub mod events;
+pub mod interaction;
 pub mod plugin;
 pub mod scene;
 pub mod settings;
 pub mod step;
+pub mod timings;
+#[cfg(feature = "viz")]
+pub mod viz;
 pub mod world;
 
 pub use plugin::{PhysicsSystems, TumblePlugin};
@@ -36,6 +40,7 @@ pub mod prelude {
     pub use crate::collider::Collider;
     pub use crate::events::{CollisionEnded, CollisionStarted, Contact};
     pub use crate::plugin::{PhysicsSystems, TumblePlugin};
-    pub use crate::settings::{Gravity, Integrator, SleepSettings, SolverSettings};
+    pub use crate::settings::{GlobalForce, Gravity, Integrator, SleepSettings, SolverSettings};
+    pub use crate::timings::StepTimings;
     pub use crate::world::PhysicsWorld;
 }

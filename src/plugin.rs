@@ -5,8 +5,9 @@ use bevy::prelude::*;
 use crate::body::*;
 use crate::collider::Collider;
 use crate::events;
-use crate::settings::{Gravity, Integrator, SleepSettings, SolverSettings};
+use crate::settings::{GlobalForce, Gravity, Integrator, SleepSettings, SolverSettings};
 use crate::step::{broad_phase, integrate, narrow_phase, prepare, sleep, solve, writeback};
+use crate::timings::{StepTimings, stamp};
 use crate::world::PhysicsWorld;
 
 /// The stages of one physics step, chained in `FixedUpdate` in this order. Order your own
@@ -50,6 +51,8 @@ impl Plugin for TumblePlugin {
             .init_resource::<Integrator>()
             .init_resource::<SolverSettings>()
             .init_resource::<SleepSettings>()
+            .init_resource::<StepTimings>()
+            .init_resource::<GlobalForce>()
             .add_message::<events::CollisionStarted>()
             .add_message::<events::CollisionEnded>()
             .init_resource::<PhysicsWorld>()
@@ -83,18 +86,31 @@ impl Plugin for TumblePlugin {
             .add_systems(
                 FixedUpdate,
                 (
-                    prepare::prepare_bodies.in_set(PhysicsSystems::Prepare),
-                    integrate::integrate_free_motion.in_set(PhysicsSystems::Integrate),
-                    broad_phase::find_pairs.in_set(PhysicsSystems::BroadPhase),
-                    narrow_phase::collide_pairs.in_set(PhysicsSystems::NarrowPhase),
-                    solve::solve_contacts.in_set(PhysicsSystems::Solve),
+                    (stamp::<0>, prepare::prepare_bodies)
+                        .chain()
+                        .in_set(PhysicsSystems::Prepare),
+                    (stamp::<1>, integrate::integrate_free_motion)
+                        .chain()
+                        .in_set(PhysicsSystems::Integrate),
+                    (stamp::<2>, broad_phase::find_pairs)
+                        .chain()
+                        .in_set(PhysicsSystems::BroadPhase),
+                    (stamp::<3>, narrow_phase::collide_pairs)
+                        .chain()
+                        .in_set(PhysicsSystems::NarrowPhase),
+                    (stamp::<4>, solve::solve_contacts)
+                        .chain()
+                        .in_set(PhysicsSystems::Solve),
                     (
+                        stamp::<5>,
                         writeback::writeback_bodies,
                         events::write_collision_messages,
                     )
                         .chain()
                         .in_set(PhysicsSystems::Writeback),
-                    sleep::update_sleep.in_set(PhysicsSystems::Sleep),
+                    (stamp::<6>, sleep::update_sleep, stamp::<7>)
+                        .chain()
+                        .in_set(PhysicsSystems::Sleep),
                 ),
             );
     }

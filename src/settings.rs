@@ -13,6 +13,12 @@ impl Default for Gravity {
     }
 }
 
+/// A force (N) pushing every dynamic body, on top of gravity: the seed engine's
+/// six-direction push. Zero by default; while it is non-zero nothing sleeps.
+#[derive(Resource, Reflect, Clone, Copy, Debug, Default, PartialEq)]
+#[reflect(Resource)]
+pub struct GlobalForce(pub Vec3);
+
 /// The time integrator for the free motion (forces, drag, rotation). Switchable at run time.
 ///
 /// Contacts are velocity impulses in every case; see `step/2_integrate` for how each

@@ -9,7 +9,7 @@ use bevy::prelude::*;
 
 use crate::body::*;
 use crate::collider::{Collider, Shape};
-use crate::settings::{Gravity, SleepSettings, SolverSettings};
+use crate::settings::{GlobalForce, Gravity, SleepSettings, SolverSettings};
 use crate::world::{BodyState, ColliderEntry, ForceModel, PhysicsWorld, STATIC, SolverBody};
 
 /// The components prepare reads from each body or collider entity.
@@ -43,7 +43,8 @@ pub type BodyQueryFilter = (
 pub fn prepare_bodies(
     mut commands: Commands,
     mut world: ResMut<PhysicsWorld>,
-    time: Res<Time>,
+    time: Res<Time<Fixed>>,
+    global: Res<GlobalForce>,
     gravity: Res<Gravity>,
     settings: Res<SolverSettings>,
     sleep: Res<SleepSettings>,
@@ -51,7 +52,8 @@ pub fn prepare_bodies(
     mut query: Query<BodyItem, BodyQueryFilter>,
 ) {
     let world = &mut *world;
-    world.dt = time.delta_secs();
+    // The fixed step's length, also when a paused app single-steps.
+    world.dt = time.timestep().as_secs_f32();
     world.solver_bodies.clear();
     world.bodies.clear();
     world.colliders.clear();
@@ -93,7 +95,7 @@ pub fn prepare_bodies(
                     .force
                     .as_ref()
                     .is_some_and(|f| touched(f.last_changed()));
-            if sleep.enabled && !user_changed {
+            if sleep.enabled && !user_changed && global.0 == Vec3::ZERO {
                 asleep = true;
             } else {
                 commands.entity(entity).remove::<Sleeping>();
@@ -116,6 +118,7 @@ pub fn prepare_bodies(
                 item.linear_damping,
                 item.angular_damping,
                 gravity.0,
+                global.0,
                 &settings,
             );
             state.sleep_time = item.sleep_timer.map_or(0.0, |t| t.0);
@@ -153,6 +156,7 @@ fn gather_body(
     lin_d: Option<&LinearDamping>,
     ang_d: Option<&AngularDamping>,
     gravity: Vec3,
+    global_force: Vec3,
     settings: &SolverSettings,
 ) -> (BodyState, SolverBody) {
     // A dynamic body without a collider rotates like a solid ball of 0.5 m radius.
@@ -167,7 +171,7 @@ fn gather_body(
     };
     let forces = if dynamic {
         ForceModel {
-            accel: gravity + force.map_or(Vec3::ZERO, |f| f.force) * inv_mass,
+            accel: gravity + (global_force + force.map_or(Vec3::ZERO, |f| f.force)) * inv_mass,
             torque: force.map_or(Vec3::ZERO, |f| f.torque),
             linear_damping: lin_d.map_or(0.0, |d| d.0.max(0.0)),
             angular_damping: ang_d.map_or(0.0, |d| d.0.max(0.0)),

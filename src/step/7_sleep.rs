@@ -6,7 +6,7 @@ use bevy::ecs::system::SystemChangeTick;
 use bevy::prelude::*;
 
 use crate::body::{RigidBody, SleepTimer, Sleeping, Velocity};
-use crate::settings::SleepSettings;
+use crate::settings::{GlobalForce, SleepSettings};
 use crate::world::{PhysicsWorld, STATIC};
 
 /// Advances sleep timers, puts still islands to sleep and wakes touched sleepers.
@@ -14,6 +14,7 @@ pub fn update_sleep(
     mut commands: Commands,
     mut world: ResMut<PhysicsWorld>,
     settings: Res<SleepSettings>,
+    global: Res<GlobalForce>,
     ticks: SystemChangeTick,
     sleepers: Query<Entity, With<Sleeping>>,
     mut bodies: Query<(&mut SleepTimer, &mut Velocity)>,
@@ -61,7 +62,8 @@ pub fn update_sleep(
             continue;
         };
         timer.0 = body.sleep_time;
-        if body.kind == RigidBody::Dynamic && least[root] >= settings.time_to_sleep {
+        let pushed = global.0 != Vec3::ZERO;
+        if body.kind == RigidBody::Dynamic && !pushed && least[root] >= settings.time_to_sleep {
             *vel = Velocity::ZERO;
             commands.entity(body.entity).insert(Sleeping {
                 since: ticks.this_run(),

@@ -1,0 +1,28 @@
+//! The tumble demo: the scene files in `assets/scenes/` on number keys, rendered by Bevy,
+//! driven by an egui panel, orbit camera and mouse dragging.
+//!
+//! `cargo run --release --features viz --example demo`
+//!
+//! With `TUMBLE_TOUR=<dir>` it visits every scene instead, saves a screenshot of each to
+//! `<dir>/<scene>.png` and exits (see `scripts/screenshots.sh`).
+
+use bevy::prelude::*;
+use tumble::prelude::*;
+use tumble::viz::demo::{DemoPlugin, tour_plugin};
+
+fn main() {
+    let mut app = App::new();
+    app.add_plugins(DefaultPlugins.set(WindowPlugin {
+        primary_window: Some(Window {
+            title: "tumble".into(),
+            resolution: (1280, 720).into(),
+            ..default()
+        }),
+        ..default()
+    }))
+    .add_plugins((TumblePlugin::default(), DemoPlugin));
+    if let Ok(dir) = std::env::var("TUMBLE_TOUR") {
+        app.add_plugins(tour_plugin(dir.into()));
+    }
+    app.run();
+}

@@ -1,0 +1,82 @@
+//! The demo application as a plugin: the scene files on number keys, pause/step/reset,
+//! the seed engine's six-direction push, adding and deleting bodies, the egui panel, and a
+//! screenshot tour for headless runs. `examples/demo.rs` only adds it.
+
+mod keys;
+mod panel;
+mod scenes;
+mod stats;
+mod tour;
+
+use bevy::diagnostic::{Diagnostic, DiagnosticPath, Diagnostics, RegisterDiagnostic};
+use bevy::picking::mesh_picking::MeshPickingPlugin;
+use bevy::prelude::*;
+use bevy_egui::{EguiPlugin, EguiPrimaryContextPass};
+use bevy_panorbit_camera::PanOrbitCameraPlugin;
+
+use super::{BodyMeshPlugin, DebugRenderPlugin, DragBodiesPlugin, InterpolationPlugin};
+use crate::timings::{STAGES, StepTimings};
+
+pub use scenes::{DemoScenes, SwitchScene};
+pub use stats::{EnergyHistory, SceneStats};
+pub use tour::tour_plugin;
+
+/// Everything the demo needs on top of `DefaultPlugins` and `TumblePlugin`.
+pub struct DemoPlugin;
+
+/// Stage diagnostics, in step order: `physics/prepare`, …, `physics/sleep`.
+pub fn stage_path(stage: usize) -> DiagnosticPath {
+    DiagnosticPath::new(format!("physics/{}", STAGES[stage].replace(' ', "_")))
+}
+
+impl Plugin for DemoPlugin {
+    fn build(&self, app: &mut App) {
+        app.add_plugins((
+            MeshPickingPlugin,
+            EguiPlugin::default(),
+            PanOrbitCameraPlugin,
+            BodyMeshPlugin,
+            InterpolationPlugin,
+            DragBodiesPlugin,
+            DebugRenderPlugin,
+        ))
+        .init_asset::<crate::scene::SceneDesc>()
+        .init_asset_loader::<crate::scene::SceneLoader>()
+        .add_plugins((scenes::plugin, keys::plugin, stats::plugin))
+        .add_systems(Startup, setup_view)
+        .add_systems(FixedPostUpdate, record_timings)
+        .add_systems(EguiPrimaryContextPass, panel::draw_panel);
+        for stage in 0..STAGES.len() {
+            app.register_diagnostic(Diagnostic::new(stage_path(stage)).with_suffix(" ms"));
+        }
+    }
+}
+
+fn setup_view(mut commands: Commands) {
+    commands.spawn((
+        bevy_panorbit_camera::PanOrbitCamera {
+            button_orbit: MouseButton::Left,
+            ..default()
+        },
+        Transform::from_xyz(0.0, 6.0, 16.0).looking_at(Vec3::Y, Vec3::Y),
+    ));
+    commands.spawn((
+        DirectionalLight {
+            shadow_maps_enabled: true,
+            illuminance: 9000.0,
+            ..default()
+        },
+        Transform::from_xyz(8.0, 16.0, 6.0).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    commands.insert_resource(GlobalAmbientLight {
+        brightness: 400.0,
+        ..default()
+    });
+    commands.insert_resource(ClearColor(Color::srgb(0.12, 0.13, 0.16)));
+}
+
+fn record_timings(timings: Res<StepTimings>, mut diagnostics: Diagnostics) {
+    for (stage, ms) in timings.stage_ms.iter().enumerate() {
+        diagnostics.add_measurement(&stage_path(stage), || *ms);
+    }
+}

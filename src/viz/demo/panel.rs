@@ -1,0 +1,144 @@
+//! The egui control panel: scenes, run controls, solver knobs, effects, counts, stage
+//! timings (from Bevy diagnostics), a live plot of energy and momentum, debug gizmos.
+
+use bevy::diagnostic::DiagnosticsStore;
+use bevy::prelude::*;
+use bevy_egui::{EguiContexts, egui};
+use egui_plot::{Legend, Line, Plot, PlotPoints};
+
+use super::scenes::{DemoScenes, SwitchScene};
+use super::stage_path;
+use super::stats::{EnergyHistory, SceneStats};
+use crate::body::{Friction, Restitution, RigidBody};
+use crate::scene::integrator_name;
+use crate::settings::{Gravity, Integrator, SleepSettings, SolverSettings};
+use crate::timings::STAGES;
+use crate::viz::DebugRenderSettings;
+
+/// Material sliders' last values, applied to every body when moved.
+#[derive(Default)]
+pub struct MaterialSliders {
+    restitution: f32,
+    friction: f32,
+    gravity_on: bool,
+    initialised: bool,
+}
+
+#[allow(clippy::too_many_arguments)]
+pub fn draw_panel(
+    mut contexts: EguiContexts,
+    scenes: Res<DemoScenes>,
+    mut switch: MessageWriter<SwitchScene>,
+    mut time: ResMut<Time<Virtual>>,
+    mut fixed: ResMut<Time<Fixed>>,
+    mut integrator: ResMut<Integrator>,
+    mut solver: ResMut<SolverSettings>,
+    mut gravity: ResMut<Gravity>,
+    mut sleep: ResMut<SleepSettings>,
+    mut debug: ResMut<DebugRenderSettings>,
+    stats: Res<SceneStats>,
+    history: Res<EnergyHistory>,
+    diagnostics: Res<DiagnosticsStore>,
+    mut materials: Query<(&mut Restitution, &mut Friction), With<RigidBody>>,
+    mut sliders: Local<MaterialSliders>,
+    mut commands: Commands,
+) -> Result {
+    if !sliders.initialised {
+        *sliders = MaterialSliders {
+            restitution: 0.0,
+            friction: 0.5,
+            gravity_on: true,
+            initialised: true,
+        };
+    }
+    let ctx = contexts.ctx_mut()?;
+    egui::Window::new("tumble").default_pos([8.0, 8.0]).default_width(300.0).show(ctx, |ui| {
+        ui.heading("Scenes (keys 1–9)");
+        for (i, name) in scenes.names.iter().enumerate() {
+            let label = format!("{} {}", i + 1, name.trim_end_matches(".scene.ron"));
+            if ui.selectable_label(i == scenes.current, label).clicked() {
+                switch.write(SwitchScene(i));
+            }
+        }
+        if let Some(err) = &scenes.error {
+            ui.colored_label(egui::Color32::LIGHT_RED, err);
+        }
+        ui.horizontal(|ui| {
+            let label = if time.is_paused() { "▶ play" } else { "⏸ pause" };
+            if ui.button(label).clicked() {
+                if time.is_paused() { time.unpause() } else { time.pause() }
+            }
+            if ui.button("step").clicked() && time.is_paused() {
+                commands.run_schedule(bevy::app::FixedMain);
+            }
+            if ui.button("reset").clicked() {
+                switch.write(SwitchScene(scenes.current));
+            }
+        });
+
+        ui.separator();
+        ui.heading("Solver");
+        egui::ComboBox::from_label("integrator").selected_text(integrator_name(*integrator)).show_ui(ui, |ui| {
+            for i in Integrator::ALL {
+                ui.selectable_value(&mut *integrator, i, integrator_name(i));
+            }
+        });
+        let mut hz = (1.0 / fixed.timestep().as_secs_f64()).round();
+        if ui.add(egui::Slider::new(&mut hz, 15.0..=480.0).text("steps/s")).changed() {
+            fixed.set_timestep_hz(hz);
+        }
+        ui.add(egui::Slider::new(&mut solver.substeps, 1..=16).text("substeps"));
+        ui.add(egui::Slider::new(&mut solver.iterations, 1..=8).text("iterations"));
+        ui.add(egui::Slider::new(&mut gravity.0.y, -30.0..=0.0).text("gravity y"));
+        let r = ui.add(egui::Slider::new(&mut sliders.restitution, 0.0..=1.0).text("restitution (all)"));
+        let f = ui.add(egui::Slider::new(&mut sliders.friction, 0.0..=1.5).text("friction (all)"));
+        if r.changed() || f.changed() {
+            for (mut rest, mut fric) in &mut materials {
+                rest.0 = sliders.restitution;
+                fric.0 = sliders.friction;
+            }
+        }
+
+        ui.separator();
+        ui.heading("Effects");
+        if ui.checkbox(&mut sliders.gravity_on, "gravity").changed() {
+            gravity.0 = if sliders.gravity_on { Vec3::new(0.0, -9.81, 0.0) } else { Vec3::ZERO };
+        }
+        ui.checkbox(&mut sleep.enabled, "sleeping");
+
+        ui.separator();
+        ui.label(format!(
+            "bodies {}  awake {}  touching pairs {}  points {}",
+            stats.bodies, stats.awake, stats.touching_pairs, stats.contact_points
+        ));
+        let mut total = 0.0;
+        egui::Grid::new("timings").show(ui, |ui| {
+            for (i, stage) in STAGES.iter().enumerate() {
+                let ms = diagnostics.get(&stage_path(i)).and_then(|d| d.smoothed()).unwrap_or(0.0);
+                total += ms;
+                ui.label(*stage);
+                ui.label(format!("{ms:.3} ms"));
+                ui.end_row();
+            }
+            ui.strong("step");
+            ui.strong(format!("{total:.3} ms"));
+            ui.end_row();
+        });
+        ui.label(format!("energy {:.2} J   momentum {:.2} kg·m/s", stats.energy, stats.momentum));
+        let energy: PlotPoints = history.samples.iter().map(|&(t, e, _)| [t, e]).collect();
+        let momentum: PlotPoints = history.samples.iter().map(|&(t, _, p)| [t, p]).collect();
+        Plot::new("energy").height(120.0).legend(Legend::default()).show(ui, |plot| {
+            plot.line(Line::new("energy (J)", energy));
+            plot.line(Line::new("momentum (kg·m/s)", momentum));
+        });
+
+        ui.separator();
+        ui.horizontal(|ui| {
+            ui.checkbox(&mut debug.contacts, "contacts");
+            ui.checkbox(&mut debug.aabbs, "AABBs");
+            ui.checkbox(&mut debug.velocities, "velocities");
+        });
+        ui.small("drag: pull a body · A/D Q/E W/S: push · B/V: add box/ball · Del: remove · Space/N/R");
+    });
+    Ok(())
+}

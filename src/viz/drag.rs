@@ -1,0 +1,106 @@
+//! Mouse interaction through bevy_picking: press on a body to select it, drag to pull it
+//! with a critically damped spring towards the cursor on a plane facing the camera (the
+//! body keeps colliding while dragged), release to throw. Needs a picking backend such as
+//! `MeshPickingPlugin`. While a body is held, the orbit camera is paused. The spring itself
+//! is [`crate::interaction::pull_dragged`], tested headless.
+
+use bevy::prelude::*;
+use bevy_panorbit_camera::PanOrbitCamera;
+
+use crate::body::{ExternalForce, RigidBody, Sleeping};
+pub use crate::interaction::{DragPullPlugin, Dragged, Selected};
+
+pub struct DragBodiesPlugin;
+
+impl Plugin for DragBodiesPlugin {
+    fn build(&self, app: &mut App) {
+        app.add_observer(grab_body)
+            .add_observer(move_target)
+            .add_observer(release_body)
+            .add_plugins(DragPullPlugin);
+    }
+}
+
+fn grab_body(
+    ev: On<Pointer<Press>>,
+    mut commands: Commands,
+    bodies: Query<(&GlobalTransform, &RigidBody)>,
+    selected: Query<Entity, With<Selected>>,
+    cameras: Query<&GlobalTransform, With<Camera3d>>,
+    mut orbit: Query<&mut PanOrbitCamera>,
+) {
+    if ev.button != PointerButton::Primary {
+        return;
+    }
+    let (Ok((tf, kind)), Some(hit)) = (bodies.get(ev.entity), ev.hit.position) else {
+        return;
+    };
+    if *kind != RigidBody::Dynamic {
+        return;
+    }
+    for e in &selected {
+        commands.entity(e).remove::<Selected>();
+    }
+    let camera = cameras
+        .get(ev.hit.camera)
+        .map(|c| c.translation())
+        .unwrap_or(Vec3::Z * 10.0);
+    let local_anchor = tf.affine().inverse().transform_point3(hit);
+    let plane_normal = (camera - hit).normalize_or(Vec3::Z);
+    commands.entity(ev.entity).remove::<Sleeping>().insert((
+        Selected,
+        Dragged {
+            local_anchor,
+            target: hit,
+            plane_normal,
+        },
+    ));
+    for mut cam in &mut orbit {
+        cam.enabled = false;
+    }
+}
+
+fn move_target(
+    ev: On<Pointer<Drag>>,
+    mut dragged: Query<(&GlobalTransform, &mut Dragged)>,
+    cameras: Query<(&Camera, &GlobalTransform), With<Camera3d>>,
+) {
+    let Ok((tf, mut d)) = dragged.get_mut(ev.entity) else {
+        return;
+    };
+    let Some((camera, cam_tf)) = cameras.iter().next() else {
+        return;
+    };
+    let Ok(ray) = camera.viewport_to_world(cam_tf, ev.pointer_location.position) else {
+        return;
+    };
+    let anchor = tf.transform_point(d.local_anchor);
+    let Ok(normal) = Dir3::new(d.plane_normal) else {
+        return;
+    };
+    if let Some(t) = ray.intersect_plane(anchor, InfinitePlane3d { normal }) {
+        d.target = ray.get_point(t);
+    }
+}
+
+fn release_body(
+    ev: On<Pointer<Release>>,
+    mut commands: Commands,
+    mut forces: Query<&mut ExternalForce, With<Dragged>>,
+    all_dragged: Query<Entity, With<Dragged>>,
+    mut orbit: Query<&mut PanOrbitCamera>,
+) {
+    if ev.button != PointerButton::Primary {
+        return;
+    }
+    // The pointer may be released over another entity: let go of whatever is held.
+    for e in &all_dragged {
+        commands.entity(e).remove::<Dragged>();
+        if let Ok(mut f) = forces.get_mut(e) {
+            *f = ExternalForce::default();
+        }
+    }
+    for mut cam in &mut orbit {
+        cam.enabled = true;
+    }
+}

@@ -1,0 +1,100 @@
+//! Meshes for bodies that have none, matched to their colliders and coloured by mass from
+//! light blue (light) to red (heavy), as the 2015 engine did.
+
+use bevy::prelude::*;
+
+use crate::body::{Mass, RigidBody};
+use crate::collider::{Collider, Shape};
+
+pub struct BodyMeshPlugin;
+
+/// The mass range (kg) the colour scale spans, logarithmically.
+#[derive(Resource, Clone, Copy, Debug)]
+pub struct MassColors {
+    pub light: f32,
+    pub heavy: f32,
+}
+
+impl Default for MassColors {
+    fn default() -> Self {
+        Self {
+            light: 0.5,
+            heavy: 100.0,
+        }
+    }
+}
+
+/// Light blue at `light` kg to red at `heavy` kg, on a log scale.
+pub fn mass_color(mass: f32, scale: &MassColors) -> Color {
+    let t =
+        ((mass.max(1e-6) / scale.light).ln() / (scale.heavy / scale.light).ln()).clamp(0.0, 1.0);
+    let light = LinearRgba::from(Color::srgb(0.55, 0.8, 1.0));
+    let heavy = LinearRgba::from(Color::srgb(0.85, 0.1, 0.08));
+    Color::from(light.mix(&heavy, t))
+}
+
+impl Plugin for BodyMeshPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<MassColors>()
+            .add_systems(PostUpdate, add_body_meshes);
+    }
+}
+
+fn add_body_meshes(
+    mut commands: Commands,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+    colors: Res<MassColors>,
+    q: Query<
+        (Entity, &Collider, Option<&RigidBody>, Option<&Mass>),
+        (Added<Collider>, Without<Mesh3d>),
+    >,
+) {
+    for (e, collider, kind, mass) in &q {
+        let dynamic = kind.is_some_and(|k| *k != RigidBody::Static);
+        let (mesh, color) = match collider.shape {
+            Shape::Sphere { radius } => (Sphere::new(radius).mesh().ico(3).unwrap(), None),
+            Shape::Cuboid { half_extents } => (Cuboid::from_size(half_extents * 2.0).into(), None),
+            Shape::Plane { half_extents } => {
+                let h = half_extents.unwrap_or(Vec2::splat(40.0));
+                let tint = if half_extents.is_some() {
+                    Color::srgba(0.75, 0.75, 0.7, 0.35)
+                } else {
+                    Color::srgb(0.32, 0.34, 0.32)
+                };
+                (Plane3d::new(Vec3::Y, h).mesh().build(), Some(tint))
+            }
+        };
+        let color = color.unwrap_or_else(|| {
+            if dynamic {
+                mass_color(mass.map_or(colors.light, |m| m.0), &colors)
+            } else {
+                Color::srgb(0.5, 0.5, 0.5)
+            }
+        });
+        let material = StandardMaterial {
+            base_color: color,
+            perceptual_roughness: 0.6,
+            alpha_mode: if color.alpha() < 1.0 {
+                AlphaMode::Blend
+            } else {
+                AlphaMode::Opaque
+            },
+            double_sided: !dynamic,
+            cull_mode: if dynamic {
+                Some(bevy::render::render_resource::Face::Back)
+            } else {
+                None
+            },
+            ..default()
+        };
+        let mut entity = commands.entity(e);
+        entity.insert((
+            Mesh3d(meshes.add(mesh)),
+            MeshMaterial3d(materials.add(material)),
+        ));
+        if !dynamic {
+            entity.insert(Pickable::IGNORE);
+        }
+    }
+}
