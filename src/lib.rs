@@ -23,6 +23,8 @@ pub mod plugin;
 pub mod scene;
 pub mod settings;
 pub mod step;
+#[cfg(feature = "study")]
+pub mod study;
 pub mod timings;
 #[cfg(feature = "viz")]
 pub mod viz;

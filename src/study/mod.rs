@@ -1,0 +1,102 @@
+//! The accuracy study: what accuracy costs in time. Scenarios with exact references run
+//! through the real plugin in a headless app, swept over integrator × step rate ×
+//! substeps; each run reports its error, energy drift and CPU time per simulated second.
+//! `examples/accuracy_study.rs` writes the CSV and SVG plots.
+
+mod plots;
+mod scenarios;
+
+pub use plots::write_plots;
+pub use scenarios::{Measure, SCENARIOS, Scenario};
+
+use std::time::Instant;
+
+use bevy::prelude::*;
+use bevy::time::TimeUpdateStrategy;
+
+use crate::prelude::*;
+
+/// One point of the sweep.
+#[derive(Clone, Copy, Debug)]
+pub struct Config {
+    pub integrator: Integrator,
+    pub hz: f64,
+    pub substeps: u32,
+}
+
+/// A result row.
+#[derive(Clone, Debug)]
+pub struct Row {
+    pub scenario: &'static str,
+    pub config: Config,
+    pub measure: Measure,
+    /// Median CPU seconds per simulated second.
+    pub cost: f64,
+}
+
+/// The step rates swept, Hz (h = 1/30 … 1/960 s).
+pub const RATES: [f64; 6] = [30.0, 60.0, 120.0, 240.0, 480.0, 960.0];
+
+/// A headless app stepping exactly once per `update()`, sleeping off.
+pub fn headless_app(config: Config) -> App {
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, TransformPlugin, TumblePlugin { hz: config.hz }))
+        .insert_resource(TimeUpdateStrategy::FixedTimesteps(1))
+        .insert_resource(config.integrator)
+        .insert_resource(SleepSettings { enabled: false, ..default() });
+    app.world_mut().resource_mut::<SolverSettings>().substeps = config.substeps;
+    app.update();
+    app
+}
+
+/// Runs one scenario under one configuration `repeats` times after a warm-up run; the
+/// measure is from the last run, the cost the median.
+pub fn run(scenario: &Scenario, config: Config, repeats: usize) -> Row {
+    let mut costs = Vec::with_capacity(repeats);
+    let mut measure = (scenario.run)(config).0;
+    for _ in 0..repeats {
+        let started = Instant::now();
+        let (m, sim_seconds) = (scenario.run)(config);
+        costs.push(started.elapsed().as_secs_f64() / sim_seconds);
+        measure = m;
+    }
+    costs.sort_by(f64::total_cmp);
+    Row { scenario: scenario.name, config, measure, cost: costs[costs.len() / 2] }
+}
+
+/// The whole sweep.
+pub fn sweep(repeats: usize) -> Vec<Row> {
+    let mut rows = Vec::new();
+    for scenario in SCENARIOS {
+        for integrator in Integrator::ALL {
+            for &hz in &RATES {
+                for substeps in [1, 4] {
+                    rows.push(run(scenario, Config { integrator, hz, substeps }, repeats));
+                }
+            }
+        }
+    }
+    rows
+}
+
+/// Least-squares slope of log(error) against log(h).
+pub fn fitted_order(points: &[(f64, f64)]) -> f64 {
+    let pts: Vec<(f64, f64)> = points.iter().filter(|p| p.1 > 0.0).map(|&(h, e)| (h.ln(), e.ln())).collect();
+    let n = pts.len() as f64;
+    let (mx, my) = (pts.iter().map(|p| p.0).sum::<f64>() / n, pts.iter().map(|p| p.1).sum::<f64>() / n);
+    let sxy: f64 = pts.iter().map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = pts.iter().map(|(x, _)| (x - mx).powi(2)).sum();
+    sxy / sxx
+}
+
+/// The rows as CSV.
+pub fn to_csv(rows: &[Row]) -> String {
+    let mut out = String::from("scenario,integrator,hz,substeps,error_final,error_max,energy_drift,cpu_s_per_sim_s\n");
+    for r in rows {
+        out += &format!(
+            "{},{:?},{},{},{:.6e},{:.6e},{:.6e},{:.6e}\n",
+            r.scenario, r.config.integrator, r.config.hz, r.config.substeps, r.measure.error_final, r.measure.error_max, r.measure.energy_drift, r.cost
+        );
+    }
+    out
+}
