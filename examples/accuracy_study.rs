@@ -7,33 +7,55 @@
 use tumble::study::{RATES, fitted_order, sweep, to_csv, write_plots};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let dir = std::path::PathBuf::from(std::env::args().nth(1).unwrap_or_else(|| "docs/accuracy".into()));
+    let dir = std::path::PathBuf::from(
+        std::env::args()
+            .nth(1)
+            .unwrap_or_else(|| "docs/accuracy".into()),
+    );
     std::fs::create_dir_all(&dir)?;
     let rows = sweep(3);
     std::fs::write(dir.join("results.csv"), to_csv(&rows))?;
     write_plots(&rows, &dir)?;
 
-    println!("| scenario | integrator | substeps | {} |", RATES.map(|r| format!("{r} Hz: err · cost")).join(" | "));
+    println!(
+        "| scenario | integrator | substeps | {} |",
+        RATES.map(|r| format!("{r} Hz: err · cost")).join(" | ")
+    );
     println!("|---|---|---|{}", "---|".repeat(RATES.len()));
     for scenario in tumble::study::SCENARIOS {
         for integrator in tumble::prelude::Integrator::ALL {
             for substeps in [1, 4] {
                 let cells: Vec<String> = rows
                     .iter()
-                    .filter(|r| r.scenario == scenario.name && r.config.integrator == integrator && r.config.substeps == substeps)
+                    .filter(|r| {
+                        r.scenario == scenario.name
+                            && r.config.integrator == integrator
+                            && r.config.substeps == substeps
+                    })
                     .map(|r| format!("{:.1e} · {:.1e}", r.measure.error_max, r.cost))
                     .collect();
-                println!("| {} | {integrator:?} | {substeps} | {} |", scenario.name, cells.join(" | "));
+                println!(
+                    "| {} | {integrator:?} | {substeps} | {} |",
+                    scenario.name,
+                    cells.join(" | ")
+                );
             }
         }
     }
     for integrator in tumble::prelude::Integrator::ALL {
         let pts: Vec<(f64, f64)> = rows
             .iter()
-            .filter(|r| r.scenario == "linear_drag" && r.config.integrator == integrator && r.config.substeps == 1)
+            .filter(|r| {
+                r.scenario == "linear_drag"
+                    && r.config.integrator == integrator
+                    && r.config.substeps == 1
+            })
             .map(|r| (1.0 / r.config.hz, r.measure.error_final))
             .collect();
-        println!("fitted order, linear drag, {integrator:?}: {:.2}", fitted_order(&pts));
+        println!(
+            "fitted order, linear drag, {integrator:?}: {:.2}",
+            fitted_order(&pts)
+        );
     }
     Ok(())
 }

@@ -17,6 +17,7 @@
 
 pub mod body;
 pub mod collider;
+pub mod effects;
 pub mod events;
 pub mod interaction;
 pub mod plugin;
@@ -40,6 +41,7 @@ pub mod prelude {
         RigidBody, SleepTimer, Sleeping, Velocity,
     };
     pub use crate::collider::Collider;
+    pub use crate::effects::{Effects, GravityScale, LockRotation, Wind};
     pub use crate::events::{CollisionEnded, CollisionStarted, Contact};
     pub use crate::plugin::{PhysicsSystems, TumblePlugin};
     pub use crate::settings::{GlobalForce, Gravity, Integrator, SleepSettings, SolverSettings};

@@ -4,11 +4,11 @@ use bevy::prelude::*;
 
 use crate::body::*;
 use crate::collider::Collider;
+use crate::effects::{Effects, GravityScale, LockRotation, Wind, effect};
 use crate::events;
 use crate::settings::{GlobalForce, Gravity, Integrator, SleepSettings, SolverSettings};
-use crate::step::{broad_phase, integrate, narrow_phase, prepare, sleep, solve, writeback};
+use crate::step::{broad_phase, forces, integrate, narrow_phase, prepare, sleep, solve, writeback};
 use crate::timings::{StepTimings, stamp};
-use crate::world::PhysicsWorld;
 
 /// The stages of one physics step, chained in `FixedUpdate` in this order. Order your own
 /// systems against them, e.g. `.after(PhysicsSystems::Writeback)` to read this step's
@@ -17,6 +17,8 @@ use crate::world::PhysicsWorld;
 pub enum PhysicsSystems {
     /// ECS → contiguous solver arrays; invalid bodies are rejected here.
     Prepare,
+    /// Gravity, drag, wind, the global push: one system per effect, each only when on.
+    Forces,
     /// Free motion (forces, drag, rotation) with the chosen [`Integrator`].
     Integrate,
     /// Candidate pairs from swept bounding boxes.
@@ -51,12 +53,14 @@ impl Plugin for TumblePlugin {
             .init_resource::<Integrator>()
             .init_resource::<SolverSettings>()
             .init_resource::<SleepSettings>()
-            .init_resource::<StepTimings>()
+            .init_resource::<Effects>()
+            .init_resource::<Wind>()
             .init_resource::<GlobalForce>()
+            .init_resource::<StepTimings>()
+            .init_resource::<crate::PhysicsWorld>()
             .add_message::<events::CollisionStarted>()
-            .add_message::<events::CollisionEnded>()
-            .init_resource::<PhysicsWorld>()
-            .register_type::<RigidBody>()
+            .add_message::<events::CollisionEnded>();
+        app.register_type::<RigidBody>()
             .register_type::<Velocity>()
             .register_type::<Mass>()
             .register_type::<Restitution>()
@@ -64,54 +68,82 @@ impl Plugin for TumblePlugin {
             .register_type::<ExternalForce>()
             .register_type::<LinearDamping>()
             .register_type::<AngularDamping>()
+            .register_type::<SleepTimer>()
+            .register_type::<GravityScale>()
+            .register_type::<LockRotation>()
             .register_type::<Collider>()
             .register_type::<Gravity>()
             .register_type::<Integrator>()
             .register_type::<SolverSettings>()
             .register_type::<SleepSettings>()
-            .register_type::<SleepTimer>()
-            .configure_sets(
-                FixedUpdate,
-                (
-                    PhysicsSystems::Prepare,
-                    PhysicsSystems::Integrate,
-                    PhysicsSystems::BroadPhase,
-                    PhysicsSystems::NarrowPhase,
-                    PhysicsSystems::Solve,
-                    PhysicsSystems::Writeback,
-                    PhysicsSystems::Sleep,
-                )
-                    .chain(),
+            .register_type::<Effects>()
+            .register_type::<Wind>()
+            .register_type::<GlobalForce>();
+
+        use PhysicsSystems as S;
+        app.configure_sets(
+            FixedUpdate,
+            (
+                S::Prepare,
+                S::Forces,
+                S::Integrate,
+                S::BroadPhase,
+                S::NarrowPhase,
+                S::Solve,
+                S::Writeback,
+                S::Sleep,
             )
-            .add_systems(
-                FixedUpdate,
+                .chain(),
+        );
+        let collisions = effect(|e| e.collisions);
+        app.add_systems(
+            FixedUpdate,
+            (
+                (stamp::<0>, prepare::prepare_bodies)
+                    .chain()
+                    .in_set(S::Prepare),
                 (
-                    (stamp::<0>, prepare::prepare_bodies)
-                        .chain()
-                        .in_set(PhysicsSystems::Prepare),
-                    (stamp::<1>, integrate::integrate_free_motion)
-                        .chain()
-                        .in_set(PhysicsSystems::Integrate),
-                    (stamp::<2>, broad_phase::find_pairs)
-                        .chain()
-                        .in_set(PhysicsSystems::BroadPhase),
-                    (stamp::<3>, narrow_phase::collide_pairs)
-                        .chain()
-                        .in_set(PhysicsSystems::NarrowPhase),
-                    (stamp::<4>, solve::solve_contacts)
-                        .chain()
-                        .in_set(PhysicsSystems::Solve),
-                    (
-                        stamp::<5>,
-                        writeback::writeback_bodies,
-                        events::write_collision_messages,
-                    )
-                        .chain()
-                        .in_set(PhysicsSystems::Writeback),
-                    (stamp::<6>, sleep::update_sleep, stamp::<7>)
-                        .chain()
-                        .in_set(PhysicsSystems::Sleep),
-                ),
-            );
+                    stamp::<1>,
+                    forces::apply_gravity.run_if(effect(|e| e.gravity)),
+                    forces::apply_global_force.run_if(effect(|e| e.global_force)),
+                    forces::apply_damping.run_if(effect(|e| e.damping)),
+                    forces::apply_wind.run_if(effect(|e| e.wind)),
+                )
+                    .chain()
+                    .in_set(S::Forces),
+                (stamp::<2>, integrate::integrate_free_motion)
+                    .chain()
+                    .in_set(S::Integrate),
+                (
+                    stamp::<3>,
+                    broad_phase::find_pairs.run_if(collisions.clone()),
+                )
+                    .chain()
+                    .in_set(S::BroadPhase),
+                (
+                    stamp::<4>,
+                    narrow_phase::collide_pairs.run_if(collisions.clone()),
+                )
+                    .chain()
+                    .in_set(S::NarrowPhase),
+                (stamp::<5>, solve::solve_contacts.run_if(collisions))
+                    .chain()
+                    .in_set(S::Solve),
+                (
+                    stamp::<6>,
+                    writeback::writeback_bodies,
+                    events::write_collision_messages,
+                )
+                    .chain()
+                    .in_set(S::Writeback),
+                (
+                    stamp::<7>,
+                    sleep::update_sleep.run_if(effect(|e| e.sleeping)),
+                    stamp::<8>,
+                )
+                    .chain()
+                    .in_set(S::Sleep),
+            ),
+        );
     }
 }

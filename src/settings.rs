@@ -99,12 +99,11 @@ impl Default for SolverSettings {
 /// When bodies fall asleep. A body whose speed stays below `linear_threshold` (m/s) and
 /// spin below `angular_threshold` (rad/s) for `time_to_sleep` seconds, together with every
 /// body it touches, stops being integrated and solved until something touches or pushes
-/// it, or its `Transform`, `Velocity` or `ExternalForce` is changed.
+/// it, or its `Transform`, `Velocity` or `ExternalForce` is changed. The switch is
+/// [`Effects::sleeping`](crate::effects::Effects).
 #[derive(Resource, Reflect, Clone, Copy, Debug, PartialEq)]
 #[reflect(Resource)]
 pub struct SleepSettings {
-    /// The switch: off wakes every sleeping body and keeps them awake.
-    pub enabled: bool,
     pub linear_threshold: f32,
     pub angular_threshold: f32,
     pub time_to_sleep: f32,
@@ -113,7 +112,6 @@ pub struct SleepSettings {
 impl Default for SleepSettings {
     fn default() -> Self {
         Self {
-            enabled: true,
             linear_threshold: 0.05,
             angular_threshold: 0.05,
             time_to_sleep: 0.5,

@@ -5,8 +5,9 @@ use bevy::platform::time::Instant;
 use bevy::prelude::*;
 
 /// Stage names, in step order, as they appear in [`StepTimings`].
-pub const STAGES: [&str; 7] = [
+pub const STAGES: [&str; 8] = [
     "prepare",
+    "forces",
     "integrate",
     "broad phase",
     "narrow phase",

@@ -53,6 +53,11 @@ pub struct BodyState {
     pub inertia: Vec3,
     pub inv_inertia: Vec3,
     pub forces: ForceModel,
+    /// The body's own drag coefficients (linear, angular), applied when damping is on.
+    pub damping: Vec2,
+    pub gravity_scale: f32,
+    /// No angular motion: no angular integration, zero inverse inertia.
+    pub rotation_locked: bool,
     /// The body touches something this step, so the solver re-integrates it with contacts.
     pub in_contact: bool,
     /// How long it has been slow enough to sleep, s.

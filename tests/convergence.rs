@@ -15,11 +15,14 @@ const T: f64 = 0.8;
 
 fn error_at(integrator: Integrator, hz: f64) -> f64 {
     let mut app = app();
-    app.insert_resource(integrator).insert_resource(Time::<Fixed>::from_hz(hz));
+    app.insert_resource(integrator)
+        .insert_resource(Time::<Fixed>::from_hz(hz));
     app.world_mut().resource_mut::<SolverSettings>().substeps = 1;
     let v0 = 5.0;
     let b = ball(&mut app, 0.5, 1.0, Vec3::ZERO, Vec3::Y * v0 as f32);
-    app.world_mut().entity_mut(b).insert(LinearDamping(C as f32));
+    app.world_mut()
+        .entity_mut(b)
+        .insert(LinearDamping(C as f32));
     step(&mut app, (hz * T) as usize);
     let v_inf = -G / C;
     let exact = v_inf + (v0 - v_inf) * (-C * T).exp();
@@ -38,10 +41,20 @@ pub fn fitted_order(points: &[(f64, f64)]) -> f64 {
 
 #[test]
 fn orders_match_theory() {
-    for (integrator, expected) in [(Integrator::ExplicitEuler, 1.0), (Integrator::SemiImplicitEuler, 1.0), (Integrator::Rk4, 4.0)] {
-        let points: Vec<(f64, f64)> = [15.0, 30.0, 60.0].iter().map(|&hz| (1.0 / hz, error_at(integrator, hz))).collect();
+    for (integrator, expected) in [
+        (Integrator::ExplicitEuler, 1.0),
+        (Integrator::SemiImplicitEuler, 1.0),
+        (Integrator::Rk4, 4.0),
+    ] {
+        let points: Vec<(f64, f64)> = [15.0, 30.0, 60.0]
+            .iter()
+            .map(|&hz| (1.0 / hz, error_at(integrator, hz)))
+            .collect();
         let order = fitted_order(&points);
         eprintln!("{integrator:?}: errors {points:?}, order {order:.3}");
-        assert!((order - expected).abs() < 0.2, "{integrator:?}: order {order}, errors {points:?}");
+        assert!(
+            (order - expected).abs() < 0.2,
+            "{integrator:?}: order {order}, errors {points:?}"
+        );
     }
 }

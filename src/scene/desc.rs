@@ -5,6 +5,7 @@ use bevy::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::body::RigidBody;
+use crate::effects::{Effects, Wind};
 use crate::settings::Integrator;
 
 /// One scene file.
@@ -36,6 +37,10 @@ pub struct SceneSettings {
     pub hz: f64,
     pub substeps: u32,
     pub iterations: u32,
+    /// Which effects the scene runs; left out: the defaults.
+    pub effects: Effects,
+    /// The wind, when `effects.wind` is on.
+    pub wind: Wind,
 }
 
 impl Default for SceneSettings {
@@ -46,6 +51,8 @@ impl Default for SceneSettings {
             hz: 60.0,
             substeps: 4,
             iterations: 1,
+            effects: Effects::default(),
+            wind: Wind::default(),
         }
     }
 }

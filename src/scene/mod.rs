@@ -71,6 +71,8 @@ impl SceneDesc {
             ..default()
         };
         commands.insert_resource(solver);
+        commands.insert_resource(s.effects);
+        commands.insert_resource(s.wind);
     }
 
     /// Spawns the scene's settings, planes and bodies. Returns the body entities.

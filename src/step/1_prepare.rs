@@ -9,7 +9,8 @@ use bevy::prelude::*;
 
 use crate::body::*;
 use crate::collider::{Collider, Shape};
-use crate::settings::{GlobalForce, Gravity, SleepSettings, SolverSettings};
+use crate::effects::{Effects, GravityScale, LockRotation};
+use crate::settings::{GlobalForce, SolverSettings};
 use crate::world::{BodyState, ColliderEntry, ForceModel, PhysicsWorld, STATIC, SolverBody};
 
 /// The components prepare reads from each body or collider entity.
@@ -29,6 +30,8 @@ pub struct BodyItem {
     angular_damping: Option<&'static AngularDamping>,
     sleeping: Option<&'static mut Sleeping>,
     sleep_timer: Option<&'static SleepTimer>,
+    gravity_scale: Option<&'static GravityScale>,
+    lock_rotation: Has<LockRotation>,
 }
 
 /// Which entities prepare gathers: bodies and colliders that were not rejected.
@@ -45,9 +48,8 @@ pub fn prepare_bodies(
     mut world: ResMut<PhysicsWorld>,
     time: Res<Time<Fixed>>,
     global: Res<GlobalForce>,
-    gravity: Res<Gravity>,
+    effects: Res<Effects>,
     settings: Res<SolverSettings>,
-    sleep: Res<SleepSettings>,
     ticks: SystemChangeTick,
     mut query: Query<BodyItem, BodyQueryFilter>,
 ) {
@@ -58,6 +60,9 @@ pub fn prepare_bodies(
     world.bodies.clear();
     world.colliders.clear();
     world.wake.clear();
+    // Filled by the collision stages only when collisions are on.
+    world.pairs.clear();
+    world.manifolds.clear();
 
     for item in &mut query {
         let entity = item.entity;
@@ -95,7 +100,8 @@ pub fn prepare_bodies(
                     .force
                     .as_ref()
                     .is_some_and(|f| touched(f.last_changed()));
-            if sleep.enabled && !user_changed && global.0 == Vec3::ZERO {
+            let pushed = effects.global_force && global.0 != Vec3::ZERO;
+            if effects.sleeping && !user_changed && !pushed {
                 asleep = true;
             } else {
                 commands.entity(entity).remove::<Sleeping>();
@@ -106,21 +112,23 @@ pub fn prepare_bodies(
             STATIC
         } else {
             let index = world.bodies.len() as u32;
-            let (mut state, solver) = gather_body(
+            let input = BodyInput {
                 entity,
                 kind,
-                tf.translation,
+                pos: tf.translation,
                 rot,
                 vel,
-                item.mass,
+                mass: item.mass,
                 shape,
-                item.force.as_deref(),
-                item.linear_damping,
-                item.angular_damping,
-                gravity.0,
-                global.0,
-                &settings,
-            );
+                force: item.force.as_deref(),
+                damping: Vec2::new(
+                    item.linear_damping.map_or(0.0, |d| d.0),
+                    item.angular_damping.map_or(0.0, |d| d.0),
+                ),
+                gravity_scale: item.gravity_scale.map_or(1.0, |g| g.0),
+                rotation_locked: item.lock_rotation || !effects.rotation,
+            };
+            let (mut state, solver) = gather_body(input, &settings);
             state.sleep_time = item.sleep_timer.map_or(0.0, |t| t.0);
             world.bodies.push(state);
             world.solver_bodies.push(solver);
@@ -143,63 +151,76 @@ pub fn prepare_bodies(
     }
 }
 
-#[allow(clippy::too_many_arguments)]
-fn gather_body(
+/// The per-body inputs of one dynamic or kinematic body.
+struct BodyInput<'a> {
     entity: Entity,
     kind: RigidBody,
     pos: Vec3,
     rot: Quat,
     vel: Velocity,
-    mass: Option<&Mass>,
+    mass: Option<&'a Mass>,
     shape: Option<Shape>,
-    force: Option<&ExternalForce>,
-    lin_d: Option<&LinearDamping>,
-    ang_d: Option<&AngularDamping>,
-    gravity: Vec3,
-    global_force: Vec3,
-    settings: &SolverSettings,
-) -> (BodyState, SolverBody) {
+    force: Option<&'a ExternalForce>,
+    damping: Vec2,
+    gravity_scale: f32,
+    rotation_locked: bool,
+}
+
+/// Builds a body's solver state. Only its own `ExternalForce` goes into the force model
+/// here; gravity, drag, wind and the global push are the force stage's effects.
+fn gather_body(b: BodyInput, settings: &SolverSettings) -> (BodyState, SolverBody) {
     // A dynamic body without a collider rotates like a solid ball of 0.5 m radius.
-    let shape = shape.unwrap_or(Shape::Sphere { radius: 0.5 });
-    let dynamic = kind == RigidBody::Dynamic;
-    let m = mass.map_or(shape.volume() * DEFAULT_DENSITY, |m| m.0);
+    let shape = b.shape.unwrap_or(Shape::Sphere { radius: 0.5 });
+    let dynamic = b.kind == RigidBody::Dynamic;
+    let m = b.mass.map_or(shape.volume() * DEFAULT_DENSITY, |m| m.0);
     let inertia = shape.principal_inertia(m);
-    let (inv_mass, inv_inertia) = if dynamic {
-        (1.0 / m, inertia.recip())
+    let inv_mass = if dynamic { 1.0 / m } else { 0.0 };
+    let inv_inertia = if dynamic && !b.rotation_locked {
+        inertia.recip()
     } else {
-        (0.0, Vec3::ZERO)
+        Vec3::ZERO
     };
-    let forces = if dynamic {
-        ForceModel {
-            accel: gravity + (global_force + force.map_or(Vec3::ZERO, |f| f.force)) * inv_mass,
-            torque: force.map_or(Vec3::ZERO, |f| f.torque),
-            linear_damping: lin_d.map_or(0.0, |d| d.0.max(0.0)),
-            angular_damping: ang_d.map_or(0.0, |d| d.0.max(0.0)),
-        }
+    let forces = match (dynamic, b.force) {
+        (true, Some(f)) => ForceModel {
+            accel: f.force * inv_mass,
+            torque: f.torque,
+            ..default()
+        },
+        _ => ForceModel::default(),
+    };
+    let v = b.vel.linear.clamp_length_max(settings.max_linear_speed);
+    let w = if b.rotation_locked {
+        Vec3::ZERO
     } else {
-        ForceModel::default()
+        b.vel.angular
     };
-    let v = vel.linear.clamp_length_max(settings.max_linear_speed);
     let state = BodyState {
-        entity,
-        kind,
-        x0: pos,
-        q0: rot,
+        entity: b.entity,
+        kind: b.kind,
+        x0: b.pos,
+        q0: b.rot,
         v0: v,
-        w0: vel.angular,
+        w0: w,
         inertia,
         inv_inertia,
         forces,
+        damping: if dynamic {
+            b.damping.max(Vec2::ZERO)
+        } else {
+            Vec2::ZERO
+        },
+        gravity_scale: b.gravity_scale,
+        rotation_locked: b.rotation_locked && dynamic,
         in_contact: false,
         sleep_time: 0.0,
     };
     let solver = SolverBody {
         v,
-        w: vel.angular,
+        w,
         dp: Vec3::ZERO,
         dq: Quat::IDENTITY,
         inv_mass,
-        inv_inertia: world_inv_inertia(rot, inv_inertia),
+        inv_inertia: world_inv_inertia(b.rot, inv_inertia),
     };
     (state, solver)
 }

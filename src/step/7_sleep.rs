@@ -16,16 +16,9 @@ pub fn update_sleep(
     settings: Res<SleepSettings>,
     global: Res<GlobalForce>,
     ticks: SystemChangeTick,
-    sleepers: Query<Entity, With<Sleeping>>,
     mut bodies: Query<(&mut SleepTimer, &mut Velocity)>,
 ) {
     let world = &mut *world;
-    if !settings.enabled {
-        for e in &sleepers {
-            commands.entity(e).remove::<Sleeping>();
-        }
-        return;
-    }
     for &e in &world.wake {
         commands.entity(e).remove::<Sleeping>();
     }

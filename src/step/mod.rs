@@ -6,6 +6,9 @@
 #[path = "1_prepare.rs"]
 pub mod prepare;
 
+#[path = "1b_forces.rs"]
+pub mod forces;
+
 #[path = "2_integrate/mod.rs"]
 pub mod integrate;
 

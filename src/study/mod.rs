@@ -40,10 +40,17 @@ pub const RATES: [f64; 6] = [30.0, 60.0, 120.0, 240.0, 480.0, 960.0];
 /// A headless app stepping exactly once per `update()`, sleeping off.
 pub fn headless_app(config: Config) -> App {
     let mut app = App::new();
-    app.add_plugins((MinimalPlugins, TransformPlugin, TumblePlugin { hz: config.hz }))
-        .insert_resource(TimeUpdateStrategy::FixedTimesteps(1))
-        .insert_resource(config.integrator)
-        .insert_resource(SleepSettings { enabled: false, ..default() });
+    app.add_plugins((
+        MinimalPlugins,
+        TransformPlugin,
+        TumblePlugin { hz: config.hz },
+    ))
+    .insert_resource(TimeUpdateStrategy::FixedTimesteps(1))
+    .insert_resource(config.integrator)
+    .insert_resource(Effects {
+        sleeping: false,
+        ..default()
+    });
     app.world_mut().resource_mut::<SolverSettings>().substeps = config.substeps;
     app.update();
     app
@@ -61,7 +68,12 @@ pub fn run(scenario: &Scenario, config: Config, repeats: usize) -> Row {
         measure = m;
     }
     costs.sort_by(f64::total_cmp);
-    Row { scenario: scenario.name, config, measure, cost: costs[costs.len() / 2] }
+    Row {
+        scenario: scenario.name,
+        config,
+        measure,
+        cost: costs[costs.len() / 2],
+    }
 }
 
 /// The whole sweep.
@@ -71,7 +83,15 @@ pub fn sweep(repeats: usize) -> Vec<Row> {
         for integrator in Integrator::ALL {
             for &hz in &RATES {
                 for substeps in [1, 4] {
-                    rows.push(run(scenario, Config { integrator, hz, substeps }, repeats));
+                    rows.push(run(
+                        scenario,
+                        Config {
+                            integrator,
+                            hz,
+                            substeps,
+                        },
+                        repeats,
+                    ));
                 }
             }
         }
@@ -81,9 +101,16 @@ pub fn sweep(repeats: usize) -> Vec<Row> {
 
 /// Least-squares slope of log(error) against log(h).
 pub fn fitted_order(points: &[(f64, f64)]) -> f64 {
-    let pts: Vec<(f64, f64)> = points.iter().filter(|p| p.1 > 0.0).map(|&(h, e)| (h.ln(), e.ln())).collect();
+    let pts: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|p| p.1 > 0.0)
+        .map(|&(h, e)| (h.ln(), e.ln()))
+        .collect();
     let n = pts.len() as f64;
-    let (mx, my) = (pts.iter().map(|p| p.0).sum::<f64>() / n, pts.iter().map(|p| p.1).sum::<f64>() / n);
+    let (mx, my) = (
+        pts.iter().map(|p| p.0).sum::<f64>() / n,
+        pts.iter().map(|p| p.1).sum::<f64>() / n,
+    );
     let sxy: f64 = pts.iter().map(|(x, y)| (x - mx) * (y - my)).sum();
     let sxx: f64 = pts.iter().map(|(x, _)| (x - mx).powi(2)).sum();
     sxy / sxx
@@ -91,11 +118,20 @@ pub fn fitted_order(points: &[(f64, f64)]) -> f64 {
 
 /// The rows as CSV.
 pub fn to_csv(rows: &[Row]) -> String {
-    let mut out = String::from("scenario,integrator,hz,substeps,error_final,error_max,energy_drift,cpu_s_per_sim_s\n");
+    let mut out = String::from(
+        "scenario,integrator,hz,substeps,error_final,error_max,energy_drift,cpu_s_per_sim_s\n",
+    );
     for r in rows {
         out += &format!(
             "{},{:?},{},{},{:.6e},{:.6e},{:.6e},{:.6e}\n",
-            r.scenario, r.config.integrator, r.config.hz, r.config.substeps, r.measure.error_final, r.measure.error_max, r.measure.energy_drift, r.cost
+            r.scenario,
+            r.config.integrator,
+            r.config.hz,
+            r.config.substeps,
+            r.measure.error_final,
+            r.measure.error_max,
+            r.measure.energy_drift,
+            r.cost
         );
     }
     out

@@ -21,8 +21,14 @@ fn color(i: Integrator) -> RGBColor {
 }
 
 fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    let (lo, hi) = values.filter(|v| *v > 0.0 && v.is_finite()).fold((f64::MAX, f64::MIN), |(a, b), v| (a.min(v), b.max(v)));
-    if lo > hi { (1e-9, 1.0) } else { (lo / 2.0, hi * 2.0) }
+    let (lo, hi) = values
+        .filter(|v| *v > 0.0 && v.is_finite())
+        .fold((f64::MAX, f64::MIN), |(a, b), v| (a.min(v), b.max(v)));
+    if lo > hi {
+        (1e-9, 1.0)
+    } else {
+        (lo / 2.0, hi * 2.0)
+    }
 }
 
 /// Writes every plot into `dir`.
@@ -44,22 +50,37 @@ fn work_precision(rows: &[&Row], unit: &str, path: &Path) -> Res {
     let (y0, y1) = bounds(rows.iter().map(|r| r.measure.error_max));
     let name = rows.first().map_or("", |r| r.scenario);
     let mut chart = ChartBuilder::on(&root)
-        .caption(format!("{name}: error against CPU time"), ("sans-serif", 20))
+        .caption(
+            format!("{name}: error against CPU time"),
+            ("sans-serif", 20),
+        )
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(70)
         .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
-    chart.configure_mesh().x_desc("CPU s per simulated s").y_desc(unit).draw()?;
+    chart
+        .configure_mesh()
+        .x_desc("CPU s per simulated s")
+        .y_desc(unit)
+        .draw()?;
     for integrator in Integrator::ALL {
         for substeps in [1, 4] {
             let mut pts: Vec<(f64, f64)> = rows
                 .iter()
-                .filter(|r| r.config.integrator == integrator && r.config.substeps == substeps && r.measure.error_max > 0.0)
+                .filter(|r| {
+                    r.config.integrator == integrator
+                        && r.config.substeps == substeps
+                        && r.measure.error_max > 0.0
+                })
                 .map(|r| (r.cost, r.measure.error_max))
                 .collect();
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
             let c = color(integrator);
-            let style = if substeps == 1 { c.stroke_width(2) } else { c.mix(0.5).stroke_width(2) };
+            let style = if substeps == 1 {
+                c.stroke_width(2)
+            } else {
+                c.mix(0.5).stroke_width(2)
+            };
             chart
                 .draw_series(LineSeries::new(pts.clone(), style))?
                 .label(format!("{integrator:?}, {substeps} substep(s)"))
@@ -67,7 +88,11 @@ fn work_precision(rows: &[&Row], unit: &str, path: &Path) -> Res {
             chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
         }
     }
-    chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
     root.present()?;
     Ok(())
 }
@@ -77,7 +102,9 @@ fn convergence(rows: &[Row], path: &Path) -> Res {
     root.fill(&WHITE)?;
     let pick = |i: Integrator| -> Vec<(f64, f64)> {
         rows.iter()
-            .filter(|r| r.scenario == "linear_drag" && r.config.integrator == i && r.config.substeps == 1)
+            .filter(|r| {
+                r.scenario == "linear_drag" && r.config.integrator == i && r.config.substeps == 1
+            })
             .map(|r| (1.0 / r.config.hz, r.measure.error_final))
             .filter(|p| p.1 > 0.0)
             .collect()
@@ -86,12 +113,19 @@ fn convergence(rows: &[Row], path: &Path) -> Res {
     let (x0, x1) = bounds(all.iter().map(|p| p.0));
     let (y0, y1) = bounds(all.iter().map(|p| p.1));
     let mut chart = ChartBuilder::on(&root)
-        .caption("Convergence in free flight (linear drag, 1 substep)", ("sans-serif", 20))
+        .caption(
+            "Convergence in free flight (linear drag, 1 substep)",
+            ("sans-serif", 20),
+        )
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(70)
         .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
-    chart.configure_mesh().x_desc("h (s)").y_desc("position error at 2 s (m)").draw()?;
+    chart
+        .configure_mesh()
+        .x_desc("h (s)")
+        .y_desc("position error at 2 s (m)")
+        .draw()?;
     for integrator in Integrator::ALL {
         let pts = pick(integrator);
         let order = fitted_order(&pts);
@@ -103,16 +137,27 @@ fn convergence(rows: &[Row], path: &Path) -> Res {
         chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
     }
     // Guides through the coarsest point of each family.
-    for (order, anchor) in [(1.0, pick(Integrator::SemiImplicitEuler)), (4.0, pick(Integrator::Rk4))] {
+    for (order, anchor) in [
+        (1.0, pick(Integrator::SemiImplicitEuler)),
+        (4.0, pick(Integrator::Rk4)),
+    ] {
         if let Some(&(h, e)) = anchor.iter().max_by(|a, b| a.0.total_cmp(&b.0)) {
-            let guide: Vec<(f64, f64)> = [x0, x1].iter().map(|&x| (x, e * (x / h).powf(order))).filter(|p| p.1 >= y0 && p.1 <= y1 * 4.0).collect();
+            let guide: Vec<(f64, f64)> = [x0, x1]
+                .iter()
+                .map(|&x| (x, e * (x / h).powf(order)))
+                .filter(|p| p.1 >= y0 && p.1 <= y1 * 4.0)
+                .collect();
             chart
                 .draw_series(LineSeries::new(guide, BLACK.mix(0.4)))?
                 .label(format!("slope {order}"))
                 .legend(|(x, y)| PathElement::new([(x, y), (x + 16, y)], BLACK.mix(0.4)));
         }
     }
-    chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
     root.present()?;
     Ok(())
 }
@@ -122,16 +167,32 @@ fn energy_over_time(path: &Path) -> Res {
     root.fill(&WHITE)?;
     let series: Vec<(Integrator, Vec<(f64, f64)>)> = Integrator::ALL
         .iter()
-        .map(|&i| (i, spinning_energy_series(Config { integrator: i, hz: 60.0, substeps: 1 })))
+        .map(|&i| {
+            (
+                i,
+                spinning_energy_series(Config {
+                    integrator: i,
+                    hz: 60.0,
+                    substeps: 1,
+                }),
+            )
+        })
         .collect();
     let (y0, y1) = bounds(series.iter().flat_map(|(_, s)| s.iter().map(|p| p.1)));
     let mut chart = ChartBuilder::on(&root)
-        .caption("Spinning box: kinetic energy / initial, h = 1/60, 1 substep", ("sans-serif", 20))
+        .caption(
+            "Spinning box: kinetic energy / initial, h = 1/60, 1 substep",
+            ("sans-serif", 20),
+        )
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(70)
         .build_cartesian_2d(0.0..10.0, (y0..y1).log_scale())?;
-    chart.configure_mesh().x_desc("t (s)").y_desc("E / E0").draw()?;
+    chart
+        .configure_mesh()
+        .x_desc("t (s)")
+        .y_desc("E / E0")
+        .draw()?;
     for (integrator, pts) in series {
         let c = color(integrator);
         chart
@@ -139,7 +200,11 @@ fn energy_over_time(path: &Path) -> Res {
             .label(format!("{integrator:?}"))
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], c.stroke_width(2)));
     }
-    chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
     root.present()?;
     Ok(())
 }
@@ -150,26 +215,47 @@ fn separatrix(rows: &[Row], path: &Path) -> Res {
     let pts: Vec<(Integrator, f64, f64)> = rows
         .iter()
         .filter(|r| r.scenario == "separatrix_box")
-        .map(|r| (r.config.integrator, r.measure.energy_drift.abs(), r.measure.error_final))
+        .map(|r| {
+            (
+                r.config.integrator,
+                r.measure.energy_drift.abs(),
+                r.measure.error_final,
+            )
+        })
         .filter(|p| p.1 > 0.0 && p.2 > 0.0)
         .collect();
     let (x0, x1) = bounds(pts.iter().map(|p| p.1));
     let (y0, y1) = bounds(pts.iter().map(|p| p.2));
     let mut chart = ChartBuilder::on(&root)
-        .caption("Box near the separatrix: period error against energy drift", ("sans-serif", 20))
+        .caption(
+            "Box near the separatrix: period error against energy drift",
+            ("sans-serif", 20),
+        )
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(70)
         .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
-    chart.configure_mesh().x_desc("|energy drift| over 10 s (relative)").y_desc("period error (relative)").draw()?;
+    chart
+        .configure_mesh()
+        .x_desc("|energy drift| over 10 s (relative)")
+        .y_desc("period error (relative)")
+        .draw()?;
     for integrator in Integrator::ALL {
         let c = color(integrator);
         chart
-            .draw_series(pts.iter().filter(|p| p.0 == integrator).map(|p| Circle::new((p.1, p.2), 4, c.filled())))?
+            .draw_series(
+                pts.iter()
+                    .filter(|p| p.0 == integrator)
+                    .map(|p| Circle::new((p.1, p.2), 4, c.filled())),
+            )?
             .label(format!("{integrator:?}"))
             .legend(move |(x, y)| Circle::new((x + 8, y), 4, c.filled()));
     }
-    chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
     root.present()?;
     Ok(())
 }

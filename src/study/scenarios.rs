@@ -24,13 +24,41 @@ pub struct Scenario {
 }
 
 pub const SCENARIOS: &[Scenario] = &[
-    Scenario { name: "projectile", unit: "position error (m)", run: projectile },
-    Scenario { name: "linear_drag", unit: "position error (m)", run: linear_drag },
-    Scenario { name: "spinning_box", unit: "flip interval error (relative)", run: spinning_box },
-    Scenario { name: "separatrix_box", unit: "period error (relative)", run: separatrix_box },
-    Scenario { name: "bouncing_ball", unit: "apex height error (relative)", run: bouncing_ball },
-    Scenario { name: "slide_to_roll", unit: "speed error vs 5/7·v0 (relative)", run: slide_to_roll },
-    Scenario { name: "box_stack", unit: "top drift (m); max = deepest penetration (m)", run: box_stack },
+    Scenario {
+        name: "projectile",
+        unit: "position error (m)",
+        run: projectile,
+    },
+    Scenario {
+        name: "linear_drag",
+        unit: "position error (m)",
+        run: linear_drag,
+    },
+    Scenario {
+        name: "spinning_box",
+        unit: "flip interval error (relative)",
+        run: spinning_box,
+    },
+    Scenario {
+        name: "separatrix_box",
+        unit: "period error (relative)",
+        run: separatrix_box,
+    },
+    Scenario {
+        name: "bouncing_ball",
+        unit: "apex height error (relative)",
+        run: bouncing_ball,
+    },
+    Scenario {
+        name: "slide_to_roll",
+        unit: "speed error vs 5/7·v0 (relative)",
+        run: slide_to_roll,
+    },
+    Scenario {
+        name: "box_stack",
+        unit: "top drift (m); max = deepest penetration (m)",
+        run: box_stack,
+    },
 ];
 
 const G: f64 = 9.81;
@@ -41,13 +69,23 @@ fn steps(config: Config, seconds: f64) -> usize {
 
 fn ball(app: &mut App, r: f32, p: Vec3, v: Vec3) -> Entity {
     app.world_mut()
-        .spawn((RigidBody::Dynamic, Collider::sphere(r), Mass(1.0), Transform::from_translation(p), Velocity::linear(v)))
+        .spawn((
+            RigidBody::Dynamic,
+            Collider::sphere(r),
+            Mass(1.0),
+            Transform::from_translation(p),
+            Velocity::linear(v),
+        ))
         .id()
 }
 
 fn state(app: &App, e: Entity) -> (Vec3, Quat, Velocity) {
     let t = app.world().get::<Transform>(e).unwrap();
-    (t.translation, t.rotation, *app.world().get::<Velocity>(e).unwrap())
+    (
+        t.translation,
+        t.rotation,
+        *app.world().get::<Velocity>(e).unwrap(),
+    )
 }
 
 fn projectile(config: Config) -> (Measure, f64) {
@@ -75,7 +113,9 @@ fn linear_drag(config: Config) -> (Measure, f64) {
     let (c, v0) = (2.0f64, 8.0f64);
     let mut app = headless_app(config);
     let b = ball(&mut app, 0.1, Vec3::ZERO, Vec3::Y * v0 as f32);
-    app.world_mut().entity_mut(b).insert(LinearDamping(c as f32));
+    app.world_mut()
+        .entity_mut(b)
+        .insert(LinearDamping(c as f32));
     let (n, h) = (steps(config, 2.0), 1.0 / config.hz);
     let v_inf = -G / c;
     let mut m = Measure::default();
@@ -101,7 +141,10 @@ fn tumbling_box(config: Config, off_axis: f32, period: f64) -> (Measure, f64) {
             Collider::cuboid(0.5, 0.05, 0.2),
             Mass(1.0),
             Transform::default(),
-            Velocity { linear: Vec3::ZERO, angular: Vec3::new(off_axis, 0.0, 10.0) },
+            Velocity {
+                linear: Vec3::ZERO,
+                angular: Vec3::new(off_axis, 0.0, 10.0),
+            },
         ))
         .id();
     let inertia = Vec3::new(0.17, 1.16, 1.01) / 12.0;
@@ -122,11 +165,17 @@ fn tumbling_box(config: Config, off_axis: f32, period: f64) -> (Measure, f64) {
         }
         (prev, energy) = (wz, e);
     }
-    let mut m = Measure { energy_drift: (energy - e0) / e0, ..default() };
+    let mut m = Measure {
+        energy_drift: (energy - e0) / e0,
+        ..default()
+    };
     if flips.len() >= 2 {
         let mean = (flips[flips.len() - 1] - flips[0]) / (flips.len() - 1) as f64;
         m.error_final = (mean - period).abs() / period;
-        m.error_max = flips.windows(2).map(|w| ((w[1] - w[0]) - period).abs() / period).fold(0.0, f64::max);
+        m.error_max = flips
+            .windows(2)
+            .map(|w| ((w[1] - w[0]) - period).abs() / period)
+            .fold(0.0, f64::max);
     } else {
         (m.error_final, m.error_max) = (1.0, 1.0);
     }
@@ -144,7 +193,8 @@ fn separatrix_box(config: Config) -> (Measure, f64) {
 fn bouncing_ball(config: Config) -> (Measure, f64) {
     let (r, h0, e) = (0.5f32, 5.0f64, 0.8f64);
     let mut app = headless_app(config);
-    app.world_mut().spawn((Collider::plane(), Transform::default()));
+    app.world_mut()
+        .spawn((Collider::plane(), Transform::default()));
     let b = ball(&mut app, r, Vec3::Y * (r + h0 as f32), Vec3::ZERO);
     app.world_mut().entity_mut(b).insert(Restitution(e as f32));
     let (n, h) = (steps(config, 6.0), 1.0 / config.hz);
@@ -174,7 +224,8 @@ fn bouncing_ball(config: Config) -> (Measure, f64) {
 fn slide_to_roll(config: Config) -> (Measure, f64) {
     let (v0, mu, r) = (7.0f32, 0.3f32, 0.5f32);
     let mut app = headless_app(config);
-    app.world_mut().spawn((Collider::plane(), Transform::default(), Friction(mu)));
+    app.world_mut()
+        .spawn((Collider::plane(), Transform::default(), Friction(mu)));
     let b = ball(&mut app, r, Vec3::Y * r, Vec3::X * v0);
     app.world_mut().entity_mut(b).insert(Friction(mu));
     let t_star = 2.0 * v0 as f64 / (7.0 * mu as f64 * G);
@@ -193,12 +244,18 @@ fn slide_to_roll(config: Config) -> (Measure, f64) {
 
 fn box_stack(config: Config) -> (Measure, f64) {
     let mut app = headless_app(config);
-    app.world_mut().spawn((Collider::plane(), Transform::default()));
+    app.world_mut()
+        .spawn((Collider::plane(), Transform::default()));
     let boxes: Vec<Entity> = (0..5)
         .map(|i| {
             let dx = if i % 2 == 0 { 0.01 } else { -0.01 };
             app.world_mut()
-                .spawn((RigidBody::Dynamic, Collider::cuboid(0.5, 0.5, 0.5), Mass(1.0), Transform::from_xyz(dx, 0.5 + i as f32, 0.0)))
+                .spawn((
+                    RigidBody::Dynamic,
+                    Collider::cuboid(0.5, 0.5, 0.5),
+                    Mass(1.0),
+                    Transform::from_xyz(dx, 0.5 + i as f32, 0.0),
+                ))
                 .id()
         })
         .collect();
@@ -208,7 +265,12 @@ fn box_stack(config: Config) -> (Measure, f64) {
     for _ in 0..n {
         app.update();
         let world = app.world().resource::<PhysicsWorld>();
-        let deepest = world.manifolds.iter().flat_map(|mf| mf.points()).map(|p| -p.separation).fold(0.0f32, f32::max);
+        let deepest = world
+            .manifolds
+            .iter()
+            .flat_map(|mf| mf.points())
+            .map(|p| -p.separation)
+            .fold(0.0f32, f32::max);
         m.error_max = m.error_max.max(deepest as f64);
     }
     m.error_final = (state(&app, boxes[4]).0 - top0).xz().length() as f64;
@@ -226,7 +288,10 @@ pub fn spinning_energy_series(config: Config) -> Vec<(f64, f64)> {
             Collider::cuboid(0.5, 0.05, 0.2),
             Mass(1.0),
             Transform::default(),
-            Velocity { linear: Vec3::ZERO, angular: Vec3::new(1.0, 0.0, 10.0) },
+            Velocity {
+                linear: Vec3::ZERO,
+                angular: Vec3::new(1.0, 0.0, 10.0),
+            },
         ))
         .id();
     let inertia = Vec3::new(0.17, 1.16, 1.01) / 12.0;

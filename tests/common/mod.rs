@@ -12,10 +12,7 @@ pub const H: f32 = 1.0 / 60.0;
 /// sleeping off so that it hides nothing.
 pub fn app() -> App {
     let mut app = app_with_sleeping();
-    app.insert_resource(SleepSettings {
-        enabled: false,
-        ..default()
-    });
+    app.world_mut().resource_mut::<Effects>().sleeping = false;
     app
 }
 

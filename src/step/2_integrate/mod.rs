@@ -47,6 +47,7 @@ pub struct Inertial<'a> {
     /// Principal moments (body frame) and their inverses.
     pub inertia: Vec3,
     pub inv_inertia: Vec3,
+    pub rotation_locked: bool,
 }
 
 impl<'a> Inertial<'a> {
@@ -55,12 +56,14 @@ impl<'a> Inertial<'a> {
             forces: &body.forces,
             inertia: body.inertia,
             inv_inertia: body.inv_inertia,
+            rotation_locked: body.rotation_locked,
         }
     }
 }
 
 /// Advances the free motion of one body by `h` from orientation `q`, velocities `v`, `w`.
-/// Kinematic bodies move with constant velocity whatever the integrator.
+/// Kinematic bodies move with constant velocity whatever the integrator; a body whose
+/// rotation is locked runs no angular integration at all.
 pub fn free_substep(
     integrator: Integrator,
     kind: RigidBody,
@@ -78,11 +81,22 @@ pub fn free_substep(
             w,
         };
     }
-    match integrator {
-        Integrator::ExplicitEuler => explicit_euler::step(body, q, v, w, h),
-        Integrator::SemiImplicitEuler => semi_implicit::step(body, q, v, w, h),
-        Integrator::Rk4 => rk4::step(body, q, v, w, h),
-    }
+    let f = body.forces;
+    let (dx, v) = match integrator {
+        Integrator::ExplicitEuler => explicit_euler::linear(f, v, h),
+        Integrator::SemiImplicitEuler => semi_implicit::linear(f, v, h),
+        Integrator::Rk4 => rk4::linear(f, v, h),
+    };
+    let (q, w) = if body.rotation_locked {
+        (q, Vec3::ZERO)
+    } else {
+        match integrator {
+            Integrator::ExplicitEuler => explicit_euler::angular(&body, q, w, h),
+            Integrator::SemiImplicitEuler => semi_implicit::angular(&body, q, w, h),
+            Integrator::Rk4 => rk4::angular(&body, q, w, h),
+        }
+    };
+    FreeStep { dx, q, v, w }
 }
 
 /// q + h·½(0, ω)⊗q, renormalised: the first-order quaternion update.

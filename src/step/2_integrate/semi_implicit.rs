@@ -5,19 +5,19 @@
 
 use bevy::prelude::*;
 
-use super::{FreeStep, Inertial, rotate, solve_gyroscopic_midpoint};
+use super::{Inertial, rotate, solve_gyroscopic_midpoint};
+use crate::world::ForceModel;
 
-pub fn step(body: Inertial, q: Quat, v: Vec3, w: Vec3, h: f32) -> FreeStep {
-    let f = body.forces;
+pub fn linear(f: &ForceModel, v: Vec3, h: f32) -> (Vec3, Vec3) {
     let v = (v + f.accel * h) / (1.0 + h * f.linear_damping);
+    (v * h, v)
+}
+
+pub fn angular(body: &Inertial, q: Quat, w: Vec3, h: f32) -> (Quat, Vec3) {
+    let f = body.forces;
     let wb = q.inverse() * w;
     let tb = q.inverse() * f.torque;
     let wb = solve_gyroscopic_midpoint(body.inertia, wb, tb, h);
     let w = (q * wb) / (1.0 + h * f.angular_damping);
-    FreeStep {
-        dx: v * h,
-        q: rotate(q, w, h),
-        v,
-        w,
-    }
+    (rotate(q, w, h), w)
 }

@@ -153,14 +153,32 @@ pub fn collide_pairs(mut world: ResMut<PhysicsWorld>, settings: Res<SolverSettin
             world.colliders[m.b as usize].entity,
         );
         if let Some(cached) = world.impulse_cache.get(&(ea, eb)) {
-            for p in m.points_mut() {
-                if let Some(c) = cached.points().iter().find(|c| c.id == p.id) {
-                    p.normal_impulse = c.normal_impulse;
-                    p.tangent_impulse = c.tangent_impulse;
-                }
-            }
+            warm_start_from(&mut m, cached, settings.speculative_margin);
         }
         world.manifolds.push(m);
+    }
+}
+
+/// Gives each new point last step's impulses: from the point with the same feature id,
+/// or else from the nearest old point within `reach` (the same spot of a resting contact
+/// can change its feature id when the reference face flips between the two boxes, and
+/// losing a heavy body's warm start makes it sink and bounce).
+fn warm_start_from(m: &mut Manifold, cached: &Manifold, reach: f32) {
+    for p in m.points_mut() {
+        let same_id = cached.points().iter().find(|c| c.id == p.id);
+        let nearest = || {
+            cached
+                .points()
+                .iter()
+                .map(|c| (c, c.point.distance_squared(p.point)))
+                .filter(|(_, d)| *d < reach * reach)
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .map(|(c, _)| c)
+        };
+        if let Some(c) = same_id.or_else(nearest) {
+            p.normal_impulse = c.normal_impulse;
+            p.tangent_impulse = c.tangent_impulse;
+        }
     }
 }
 

@@ -116,42 +116,71 @@ fn apply(a: &mut SolverBody, b: &mut SolverBody, ra: Vec3, rb: Vec3, p: Vec3) {
     b.w += b.inv_inertia * rb.cross(p);
 }
 
-/// Contact stiffness rule. A soft contact under load L sinks by L/(m_eff·ω²), and m_eff
-/// is about the lighter body's mass, so a heavy box on a light one sinks as far as the
-/// mass ratio says. The frequency therefore rises with the square root of the mass ratio
-/// (the spring is as stiff as if the light body weighed as much as the heavy one), and a
-/// contact with something that cannot move is twice as stiff; both are capped at
-/// `max_hertz` (a quarter of the substep rate) where the soft step stays smooth.
-pub fn contact_hertz(base: f32, max_hertz: f32, inv_mass_a: f32, inv_mass_b: f32) -> f32 {
+/// Contact stiffness rule. A soft contact is a spring-damper tuned to the pair's
+/// effective mass m_eff — about the lighter body's mass. Under a load much heavier than
+/// that (a heavy box on a light one, or a light box carrying a stack) it sinks by
+/// load/(m_eff·ω²) and, worse, the heavy load rides an under-damped spring (damping ratio
+/// ζ·√(m_eff/M)) and bounces. So both follow the mass the contact carries, M: the larger
+/// of the heavier body's mass and the load last step's impulses show. With r = M/m_eff,
+/// the frequency rises by √r (capped at `max_hertz`, a quarter of the substep rate, where
+/// the soft step stays smooth) and the damping ratio by √r, which keeps the load's own
+/// damping ratio at ζ. A contact with something that cannot move starts twice as stiff.
+/// Returns the softness and r.
+pub fn contact_softness(
+    p: &ContactParams,
+    inv_mass_a: f32,
+    inv_mass_b: f32,
+    load_impulse: f32,
+) -> (Softness, f32) {
     let (lo, hi) = (inv_mass_a.min(inv_mass_b), inv_mass_a.max(inv_mass_b));
-    let hertz = if lo == 0.0 {
-        2.0 * base
+    if hi == 0.0 {
+        return (Softness::new(0.0, 0.0, p.h), 1.0);
+    }
+    let light = 1.0 / hi;
+    let heavy = if lo > 0.0 { 1.0 / lo } else { light };
+    let carried = if p.gravity > 0.0 {
+        load_impulse / (p.gravity * p.h)
     } else {
-        base * (hi / lo).sqrt()
+        0.0
     };
-    hertz.min(max_hertz)
+    let r = (heavy.max(carried) / light).max(1.0);
+    let base = if lo == 0.0 { 2.0 * p.hertz } else { p.hertz };
+    (
+        Softness::new(
+            (base * r.sqrt()).min(p.max_hertz),
+            p.damping_ratio * r.sqrt(),
+            p.h,
+        ),
+        r,
+    )
 }
 
-/// The stiffness knobs for [`prepare_constraints`].
+/// The knobs of [`prepare_constraints`]: stiffness, substep, and whether friction runs.
 #[derive(Clone, Copy, Debug)]
-pub struct Stiffness {
+pub struct ContactParams {
+    /// With friction off every constraint gets μ = 0 and its friction rows are skipped.
+    pub friction: bool,
     pub hertz: f32,
     pub max_hertz: f32,
+    /// |gravity|, to read a contact's load from its impulses.
+    pub gravity: f32,
     pub damping_ratio: f32,
     /// Substep, s.
     pub h: f32,
 }
 
-/// Builds the constraint of every manifold.
+/// Builds the constraint of every manifold. Returns the largest load ratio r of any
+/// contact (see [`contact_softness`]), which sets how many iterations the step needs.
 pub fn prepare_constraints(
     manifolds: &[Manifold],
     colliders: &[ColliderEntry],
     states: &[BodyState],
     bodies: &[SolverBody],
-    stiffness: Stiffness,
+    stiffness: ContactParams,
     out: &mut Vec<ContactConstraint>,
-) {
+) -> f32 {
     out.clear();
+    let mut max_ratio = 1.0f32;
     for (mi, m) in manifolds.iter().enumerate() {
         let (ca, cb) = (&colliders[m.a as usize], &colliders[m.b as usize]);
         let centre = |c: &ColliderEntry| {
@@ -163,12 +192,9 @@ pub fn prepare_constraints(
         };
         let (sa, sb) = (body(bodies, ca.body), body(bodies, cb.body));
         let (t1, t2) = m.normal.any_orthonormal_pair();
-        let hertz = contact_hertz(
-            stiffness.hertz,
-            stiffness.max_hertz,
-            sa.inv_mass,
-            sb.inv_mass,
-        );
+        let load: f32 = m.points().iter().map(|p| p.normal_impulse).sum();
+        let (softness, r) = contact_softness(&stiffness, sa.inv_mass, sb.inv_mass, load);
+        max_ratio = max_ratio.max(r);
         let mut c = ContactConstraint {
             a: ca.body,
             b: cb.body,
@@ -178,9 +204,9 @@ pub fn prepare_constraints(
             tangent2: t2,
             turn_a: !matches!(ca.shape, Shape::Sphere { .. }),
             turn_b: !matches!(cb.shape, Shape::Sphere { .. }),
-            friction: m.friction,
+            friction: if stiffness.friction { m.friction } else { 0.0 },
             restitution: m.restitution,
-            softness: Softness::new(hertz, stiffness.damping_ratio, stiffness.h),
+            softness,
             points: [ConstraintPoint::default(); MAX_POINTS],
             len: m.len,
         };
@@ -200,6 +226,7 @@ pub fn prepare_constraints(
         }
         out.push(c);
     }
+    max_ratio
 }
 
 /// Applies last step's accumulated impulses (already in the constraints).
@@ -260,7 +287,8 @@ pub fn solve(
             p.max_normal_impulse = p.max_normal_impulse.max(new);
             apply(&mut a, &mut b, p.ra, p.rb, c.normal * dl);
         }
-        for p in c.points[..c.len].iter_mut() {
+        // Friction, skipped for frictionless pairs (and when the effect is off).
+        for p in c.points[..c.len].iter_mut().filter(|_| c.friction > 0.0) {
             // Both tangent rows from the same velocity, then clamp to the disc: a round cone.
             let vr = relative_velocity(&a, &b, p.ra, p.rb);
             let vt = Vec2::new(vr.dot(c.tangent1), vr.dot(c.tangent2));

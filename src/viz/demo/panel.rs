@@ -10,8 +10,9 @@ use super::scenes::{DemoScenes, SwitchScene};
 use super::stage_path;
 use super::stats::{EnergyHistory, SceneStats};
 use crate::body::{Friction, Restitution, RigidBody};
+use crate::effects::Effects;
 use crate::scene::integrator_name;
-use crate::settings::{Gravity, Integrator, SleepSettings, SolverSettings};
+use crate::settings::{Gravity, Integrator, SolverSettings};
 use crate::timings::STAGES;
 use crate::viz::DebugRenderSettings;
 
@@ -20,7 +21,6 @@ use crate::viz::DebugRenderSettings;
 pub struct MaterialSliders {
     restitution: f32,
     friction: f32,
-    gravity_on: bool,
     initialised: bool,
 }
 
@@ -34,7 +34,7 @@ pub fn draw_panel(
     mut integrator: ResMut<Integrator>,
     mut solver: ResMut<SolverSettings>,
     mut gravity: ResMut<Gravity>,
-    mut sleep: ResMut<SleepSettings>,
+    mut effects: ResMut<Effects>,
     mut debug: ResMut<DebugRenderSettings>,
     stats: Res<SceneStats>,
     history: Res<EnergyHistory>,
@@ -101,10 +101,11 @@ pub fn draw_panel(
 
         ui.separator();
         ui.heading("Effects");
-        if ui.checkbox(&mut sliders.gravity_on, "gravity").changed() {
-            gravity.0 = if sliders.gravity_on { Vec3::new(0.0, -9.81, 0.0) } else { Vec3::ZERO };
-        }
-        ui.checkbox(&mut sleep.enabled, "sleeping");
+        ui.horizontal_wrapped(|ui| {
+            for (name, on) in effects.toggles() {
+                ui.checkbox(on, name);
+            }
+        });
 
         ui.separator();
         ui.label(format!(
