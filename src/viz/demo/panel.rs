@@ -47,7 +47,6 @@ pub fn draw_panel(
         *sliders = MaterialSliders {
             restitution: 0.0,
             friction: 0.5,
-            gravity_on: true,
             initialised: true,
         };
     }
