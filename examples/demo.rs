@@ -12,14 +12,24 @@ use tumble::viz::demo::{DemoPlugin, tour_plugin};
 
 fn main() {
     let mut app = App::new();
-    app.add_plugins(DefaultPlugins.set(WindowPlugin {
-        primary_window: Some(Window {
-            title: "tumble".into(),
-            resolution: (1280, 720).into(),
-            ..default()
-        }),
+    let window = Window {
+        title: "tumble".into(),
+        resolution: (1280, 720).into(),
         ..default()
-    }))
+    };
+    // The scene files live in this repository's assets/, wherever the binary runs from.
+    let assets = AssetPlugin {
+        file_path: concat!(env!("CARGO_MANIFEST_DIR"), "/assets").into(),
+        ..default()
+    };
+    app.add_plugins(
+        DefaultPlugins
+            .set(WindowPlugin {
+                primary_window: Some(window),
+                ..default()
+            })
+            .set(assets),
+    )
     .add_plugins((TumblePlugin::default(), DemoPlugin));
     if let Ok(dir) = std::env::var("TUMBLE_TOUR") {
         app.add_plugins(tour_plugin(dir.into()));

@@ -24,13 +24,12 @@ impl Default for MassColors {
     }
 }
 
-/// Light blue at `light` kg to red at `heavy` kg, on a log scale.
+/// Light blue at `light` kg to red at `heavy` kg: the hue turns from 200° to 0° on a log
+/// scale of the mass.
 pub fn mass_color(mass: f32, scale: &MassColors) -> Color {
     let t =
         ((mass.max(1e-6) / scale.light).ln() / (scale.heavy / scale.light).ln()).clamp(0.0, 1.0);
-    let light = LinearRgba::from(Color::srgb(0.55, 0.8, 1.0));
-    let heavy = LinearRgba::from(Color::srgb(0.85, 0.1, 0.08));
-    Color::from(light.mix(&heavy, t))
+    Color::hsl(200.0 * (1.0 - t), 0.7, 0.68 - 0.22 * t)
 }
 
 impl Plugin for BodyMeshPlugin {

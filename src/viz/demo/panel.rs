@@ -51,94 +51,95 @@ pub fn draw_panel(
         };
     }
     let ctx = contexts.ctx_mut()?;
-    egui::Window::new("tumble").default_pos([8.0, 8.0]).default_width(300.0).show(ctx, |ui| {
-        ui.heading("Scenes (keys 1–9)");
-        for (i, name) in scenes.names.iter().enumerate() {
-            let label = format!("{} {}", i + 1, name.trim_end_matches(".scene.ron"));
-            if ui.selectable_label(i == scenes.current, label).clicked() {
-                switch.write(SwitchScene(i));
+    egui::Window::new("tumble").default_pos([8.0, 8.0]).default_width(290.0).show(ctx, |ui| {
+        egui::ScrollArea::vertical().max_height(660.0).show(ui, |ui| {
+            let current = scenes.names.get(scenes.current).map_or("", |n| n.trim_end_matches(".scene.ron"));
+            egui::ComboBox::from_label("scene (keys 1–9)").selected_text(current).show_ui(ui, |ui| {
+                for (i, name) in scenes.names.iter().enumerate() {
+                    if ui.selectable_label(i == scenes.current, name.trim_end_matches(".scene.ron")).clicked() {
+                        switch.write(SwitchScene(i));
+                    }
+                }
+            });
+            if let Some(err) = &scenes.error {
+                ui.colored_label(egui::Color32::LIGHT_RED, err);
             }
-        }
-        if let Some(err) = &scenes.error {
-            ui.colored_label(egui::Color32::LIGHT_RED, err);
-        }
-        ui.horizontal(|ui| {
-            let label = if time.is_paused() { "▶ play" } else { "⏸ pause" };
-            if ui.button(label).clicked() {
-                if time.is_paused() { time.unpause() } else { time.pause() }
-            }
-            if ui.button("step").clicked() && time.is_paused() {
-                commands.run_schedule(bevy::app::FixedMain);
-            }
-            if ui.button("reset").clicked() {
-                switch.write(SwitchScene(scenes.current));
-            }
-        });
+            ui.horizontal(|ui| {
+                let label = if time.is_paused() { "▶ play" } else { "⏸ pause" };
+                if ui.button(label).clicked() {
+                    if time.is_paused() { time.unpause() } else { time.pause() }
+                }
+                if ui.button("step").clicked() && time.is_paused() {
+                    commands.run_schedule(bevy::app::FixedMain);
+                }
+                if ui.button("reset").clicked() {
+                    switch.write(SwitchScene(scenes.current));
+                }
+            });
 
-        ui.separator();
-        ui.heading("Solver");
-        egui::ComboBox::from_label("integrator").selected_text(integrator_name(*integrator)).show_ui(ui, |ui| {
-            for i in Integrator::ALL {
-                ui.selectable_value(&mut *integrator, i, integrator_name(i));
-            }
-        });
-        let mut hz = (1.0 / fixed.timestep().as_secs_f64()).round();
-        if ui.add(egui::Slider::new(&mut hz, 15.0..=480.0).text("steps/s")).changed() {
-            fixed.set_timestep_hz(hz);
-        }
-        ui.add(egui::Slider::new(&mut solver.substeps, 1..=16).text("substeps"));
-        ui.add(egui::Slider::new(&mut solver.iterations, 1..=8).text("iterations"));
-        ui.add(egui::Slider::new(&mut gravity.0.y, -30.0..=0.0).text("gravity y"));
-        let r = ui.add(egui::Slider::new(&mut sliders.restitution, 0.0..=1.0).text("restitution (all)"));
-        let f = ui.add(egui::Slider::new(&mut sliders.friction, 0.0..=1.5).text("friction (all)"));
-        if r.changed() || f.changed() {
-            for (mut rest, mut fric) in &mut materials {
-                rest.0 = sliders.restitution;
-                fric.0 = sliders.friction;
-            }
-        }
+            egui::CollapsingHeader::new("Solver").default_open(true).show(ui, |ui| {
+                egui::ComboBox::from_label("integrator").selected_text(integrator_name(*integrator)).show_ui(ui, |ui| {
+                    for i in Integrator::ALL {
+                        ui.selectable_value(&mut *integrator, i, integrator_name(i));
+                    }
+                });
+                let mut hz = (1.0 / fixed.timestep().as_secs_f64()).round();
+                if ui.add(egui::Slider::new(&mut hz, 15.0..=480.0).text("steps/s")).changed() {
+                    fixed.set_timestep_hz(hz);
+                }
+                ui.add(egui::Slider::new(&mut solver.substeps, 1..=16).text("substeps"));
+                ui.add(egui::Slider::new(&mut solver.iterations, 1..=8).text("iterations"));
+                ui.add(egui::Slider::new(&mut gravity.0.y, -30.0..=0.0).text("gravity y"));
+                let r = ui.add(egui::Slider::new(&mut sliders.restitution, 0.0..=1.0).text("restitution (all)"));
+                let f = ui.add(egui::Slider::new(&mut sliders.friction, 0.0..=1.5).text("friction (all)"));
+                if r.changed() || f.changed() {
+                    for (mut rest, mut fric) in &mut materials {
+                        rest.0 = sliders.restitution;
+                        fric.0 = sliders.friction;
+                    }
+                }
+            });
 
-        ui.separator();
-        ui.heading("Effects");
-        ui.horizontal_wrapped(|ui| {
-            for (name, on) in effects.toggles() {
-                ui.checkbox(on, name);
-            }
-        });
+            egui::CollapsingHeader::new("Effects").default_open(false).show(ui, |ui| {
+                ui.horizontal_wrapped(|ui| {
+                    for (name, on) in effects.toggles() {
+                        ui.checkbox(on, name);
+                    }
+                });
+            });
 
-        ui.separator();
-        ui.label(format!(
-            "bodies {}  awake {}  touching pairs {}  points {}",
-            stats.bodies, stats.awake, stats.touching_pairs, stats.contact_points
-        ));
-        let mut total = 0.0;
-        egui::Grid::new("timings").show(ui, |ui| {
-            for (i, stage) in STAGES.iter().enumerate() {
-                let ms = diagnostics.get(&stage_path(i)).and_then(|d| d.smoothed()).unwrap_or(0.0);
-                total += ms;
-                ui.label(*stage);
-                ui.label(format!("{ms:.3} ms"));
-                ui.end_row();
-            }
-            ui.strong("step");
-            ui.strong(format!("{total:.3} ms"));
-            ui.end_row();
-        });
-        ui.label(format!("energy {:.2} J   momentum {:.2} kg·m/s", stats.energy, stats.momentum));
-        let energy: PlotPoints = history.samples.iter().map(|&(t, e, _)| [t, e]).collect();
-        let momentum: PlotPoints = history.samples.iter().map(|&(t, _, p)| [t, p]).collect();
-        Plot::new("energy").height(120.0).legend(Legend::default()).show(ui, |plot| {
-            plot.line(Line::new("energy (J)", energy));
-            plot.line(Line::new("momentum (kg·m/s)", momentum));
-        });
+            ui.label(format!(
+                "bodies {}  awake {}  contacts {} ({} points)",
+                stats.bodies, stats.awake, stats.touching_pairs, stats.contact_points
+            ));
+            let ms: Vec<f64> = (0..STAGES.len())
+                .map(|i| diagnostics.get(&stage_path(i)).and_then(|d| d.smoothed()).unwrap_or(0.0))
+                .collect();
+            egui::CollapsingHeader::new(format!("step {:.3} ms", ms.iter().sum::<f64>())).show(ui, |ui| {
+                egui::Grid::new("timings").show(ui, |ui| {
+                    for (stage, ms) in STAGES.iter().zip(&ms) {
+                        ui.label(*stage);
+                        ui.label(format!("{ms:.3} ms"));
+                        ui.end_row();
+                    }
+                });
+            });
+            ui.label(format!("energy {:.2} J   momentum {:.2} kg·m/s", stats.energy, stats.momentum));
+            let energy: PlotPoints = history.samples.iter().map(|&(t, e, _)| [t, e]).collect();
+            let momentum: PlotPoints = history.samples.iter().map(|&(t, _, p)| [t, p]).collect();
+            Plot::new("energy").height(110.0).legend(Legend::default()).show(ui, |plot| {
+                plot.line(Line::new("energy (J)", energy));
+                plot.line(Line::new("momentum (kg·m/s)", momentum));
+            });
 
-        ui.separator();
-        ui.horizontal(|ui| {
-            ui.checkbox(&mut debug.contacts, "contacts");
-            ui.checkbox(&mut debug.aabbs, "AABBs");
-            ui.checkbox(&mut debug.velocities, "velocities");
+            ui.horizontal(|ui| {
+                ui.label("gizmos");
+                ui.checkbox(&mut debug.contacts, "contacts");
+                ui.checkbox(&mut debug.aabbs, "AABBs");
+                ui.checkbox(&mut debug.velocities, "velocities");
+            });
+            ui.small("drag: pull · A/D Q/E W/S: push · B/V: add box/ball · Del: remove · Space/N/R");
         });
-        ui.small("drag: pull a body · A/D Q/E W/S: push · B/V: add box/ball · Del: remove · Space/N/R");
     });
     Ok(())
 }

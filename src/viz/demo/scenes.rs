@@ -94,6 +94,7 @@ fn run_switch(
     assets: Res<Assets<SceneDesc>>,
     old: Query<Entity, With<SceneEntity>>,
     mut camera: Query<&mut PanOrbitCamera>,
+    mut history: ResMut<super::EnergyHistory>,
 ) {
     let Some(&SwitchScene(index)) = requests.read().last() else {
         return;
@@ -105,6 +106,7 @@ fn run_switch(
         return;
     };
     switch_scene(&mut commands, scene, &old);
+    history.samples.clear();
     for mut cam in &mut camera {
         cam.target_focus = scene.camera.focus;
         cam.target_radius = scene.camera.distance;
