@@ -50,7 +50,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     && r.config.integrator == integrator
                     && r.config.substeps == 1
             })
-            .map(|r| (1.0 / r.config.hz, r.measure.error_final))
+            .map(|r| (1.0 / r.config.hz, r.measure.error_max))
             .collect();
         println!(
             "fitted order, linear drag, {integrator:?}: {:.2}",

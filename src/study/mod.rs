@@ -99,11 +99,15 @@ pub fn sweep(repeats: usize) -> Vec<Row> {
     rows
 }
 
-/// Least-squares slope of log(error) against log(h).
+/// Errors below this (m/s, on speeds of ~8 m/s) are f32 rounding, not truncation.
+pub const ROUNDING_FLOOR: f64 = 1e-5;
+
+/// Least-squares slope of log(error) against log(h), over the points above the f32
+/// rounding floor.
 pub fn fitted_order(points: &[(f64, f64)]) -> f64 {
     let pts: Vec<(f64, f64)> = points
         .iter()
-        .filter(|p| p.1 > 0.0)
+        .filter(|p| p.1 > ROUNDING_FLOOR)
         .map(|&(h, e)| (h.ln(), e.ln()))
         .collect();
     let n = pts.len() as f64;

@@ -60,6 +60,9 @@ fn work_precision(rows: &[&Row], unit: &str, path: &Path) -> Res {
         .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
     chart
         .configure_mesh()
+        .light_line_style(RGBColor(236, 236, 236))
+        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .x_label_formatter(&|v| format!("{v:.0e}"))
         .x_desc("CPU s per simulated s")
         .y_desc(unit)
         .draw()?;
@@ -105,7 +108,7 @@ fn convergence(rows: &[Row], path: &Path) -> Res {
             .filter(|r| {
                 r.scenario == "linear_drag" && r.config.integrator == i && r.config.substeps == 1
             })
-            .map(|r| (1.0 / r.config.hz, r.measure.error_final))
+            .map(|r| (1.0 / r.config.hz, r.measure.error_max))
             .filter(|p| p.1 > 0.0)
             .collect()
     };
@@ -114,7 +117,7 @@ fn convergence(rows: &[Row], path: &Path) -> Res {
     let (y0, y1) = bounds(all.iter().map(|p| p.1));
     let mut chart = ChartBuilder::on(&root)
         .caption(
-            "Convergence in free flight (linear drag, 1 substep)",
+            "Convergence in free flight (stiff linear drag, 1 substep)",
             ("sans-serif", 20),
         )
         .margin(12)
@@ -123,8 +126,11 @@ fn convergence(rows: &[Row], path: &Path) -> Res {
         .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
     chart
         .configure_mesh()
+        .light_line_style(RGBColor(236, 236, 236))
+        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .x_label_formatter(&|v| format!("{v:.0e}"))
         .x_desc("h (s)")
-        .y_desc("position error at 2 s (m)")
+        .y_desc("largest velocity error over 0.5 s (m/s)")
         .draw()?;
     for integrator in Integrator::ALL {
         let pts = pick(integrator);
@@ -178,7 +184,8 @@ fn energy_over_time(path: &Path) -> Res {
             )
         })
         .collect();
-    let (y0, y1) = bounds(series.iter().flat_map(|(_, s)| s.iter().map(|p| p.1)));
+    // Explicit Euler's energy runs away (to overflow); show the band that tells the story.
+    let (y0, y1) = (0.5, 20.0);
     let mut chart = ChartBuilder::on(&root)
         .caption(
             "Spinning box: kinetic energy / initial, h = 1/60, 1 substep",
@@ -190,13 +197,18 @@ fn energy_over_time(path: &Path) -> Res {
         .build_cartesian_2d(0.0..10.0, (y0..y1).log_scale())?;
     chart
         .configure_mesh()
+        .light_line_style(RGBColor(236, 236, 236))
+        .y_label_formatter(&|v| format!("{v:.0e}"))
         .x_desc("t (s)")
         .y_desc("E / E0")
         .draw()?;
     for (integrator, pts) in series {
         let c = color(integrator);
         chart
-            .draw_series(LineSeries::new(pts, c.stroke_width(2)))?
+            .draw_series(LineSeries::new(
+                pts.into_iter().filter(|p| p.1.is_finite() && p.1 < y1),
+                c.stroke_width(2),
+            ))?
             .label(format!("{integrator:?}"))
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], c.stroke_width(2)));
     }
@@ -237,6 +249,9 @@ fn separatrix(rows: &[Row], path: &Path) -> Res {
         .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
     chart
         .configure_mesh()
+        .light_line_style(RGBColor(236, 236, 236))
+        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .x_label_formatter(&|v| format!("{v:.0e}"))
         .x_desc("|energy drift| over 10 s (relative)")
         .y_desc("period error (relative)")
         .draw()?;
