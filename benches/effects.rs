@@ -36,8 +36,16 @@ fn app_for(scene: &SceneDesc, effects: Effects) -> App {
 
 fn cases(scene: &SceneDesc, needed: Effects) -> Vec<Case> {
     let mut out = vec![
-        Case { label: "only what it needs".into(), app: app_for(scene, needed), samples: vec![] },
-        Case { label: "all effects".into(), app: app_for(scene, Effects::ALL), samples: vec![] },
+        Case {
+            label: "only what it needs".into(),
+            app: app_for(scene, needed),
+            samples: vec![],
+        },
+        Case {
+            label: "all effects".into(),
+            app: app_for(scene, Effects::ALL),
+            samples: vec![],
+        },
     ];
     let names: Vec<&str> = needed.clone().toggles().iter().map(|(n, _)| *n).collect();
     for (i, name) in names.into_iter().enumerate() {
@@ -48,7 +56,11 @@ fn cases(scene: &SceneDesc, needed: Effects) -> Vec<Case> {
             continue;
         }
         *on = true;
-        out.push(Case { label: format!("+ {name}"), app: app_for(scene, with), samples: vec![] });
+        out.push(Case {
+            label: format!("+ {name}"),
+            app: app_for(scene, with),
+            samples: vec![],
+        });
     }
     out
 }
@@ -66,14 +78,22 @@ fn run(title: &str, scene: &SceneDesc, needed: Effects) {
             for _ in 0..STEPS {
                 case.app.update();
             }
-            case.samples.push(started.elapsed().as_secs_f64() * 1e3 / STEPS as f64);
+            case.samples
+                .push(started.elapsed().as_secs_f64() * 1e3 / STEPS as f64);
         }
     }
     let base = median(&mut cases[0].samples.clone());
-    println!("\n### {title}\n\n| effects | ms / step | × needed | marginal ms |\n|---|---:|---:|---:|");
+    println!(
+        "\n### {title}\n\n| effects | ms / step | × needed | marginal ms |\n|---|---:|---:|---:|"
+    );
     for case in cases.iter_mut() {
         let m = median(&mut case.samples);
-        println!("| {} | {m:.3} | {:.2} | {:+.3} |", case.label, m / base, m - base);
+        println!(
+            "| {} | {m:.3} | {:.2} | {:+.3} |",
+            case.label,
+            m / base,
+            m - base
+        );
     }
 }
 
@@ -85,7 +105,10 @@ fn main() {
     let mut free = load("9_rain.scene.ron");
     free.planes.clear();
     free.bodies.truncate(1);
-    if let tumble::scene::BodyGroup::Pile { count, min, max, .. } = &mut free.bodies[0] {
+    if let tumble::scene::BodyGroup::Pile {
+        count, min, max, ..
+    } = &mut free.bodies[0]
+    {
         *count = 1000;
         (*min, *max) = (Vec3::new(-30.0, 0.0, -30.0), Vec3::new(30.0, 60.0, 30.0));
     }
@@ -93,6 +116,13 @@ fn main() {
 
     // The 385-cube pyramid: gravity, collisions, friction, rotation.
     let pyramid = load("3_pyramid.scene.ron");
-    let needed = Effects { damping: false, wind: false, global_force: false, restitution: false, sleeping: false, ..Effects::ALL };
+    let needed = Effects {
+        damping: false,
+        wind: false,
+        global_force: false,
+        restitution: false,
+        sleeping: false,
+        ..Effects::ALL
+    };
     run("385-cube pyramid", &pyramid, needed);
 }

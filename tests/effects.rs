@@ -42,16 +42,27 @@ fn locked_rotation_keeps_orientation_through_a_corner_landing() {
         ground(&mut app, Vec3::ZERO, Quat::IDENTITY);
         let b = cuboid(&mut app, Vec3::splat(0.5), 1.0, Vec3::Y * 2.0);
         let mut entity = app.world_mut().entity_mut(b);
-        entity.insert((Transform::from_xyz(0.0, 2.0, 0.0).with_rotation(tilted), Velocity::linear(Vec3::X)));
+        entity.insert((
+            Transform::from_xyz(0.0, 2.0, 0.0).with_rotation(tilted),
+            Velocity::linear(Vec3::X),
+        ));
         if scene_wide {
             set(&mut app, |e| e.rotation = false);
         } else {
             app.world_mut().entity_mut(b).insert(LockRotation);
         }
         step(&mut app, 120);
-        assert!(rot(&app, b).angle_between(tilted) < 1e-5, "turned to {:?}", rot(&app, b));
+        assert!(
+            rot(&app, b).angle_between(tilted) < 1e-5,
+            "turned to {:?}",
+            rot(&app, b)
+        );
         assert_eq!(vel(&app, b).angular, Vec3::ZERO);
-        assert!(pos(&app, b).y < 1.0, "it landed on a corner and stays up on it: {}", pos(&app, b));
+        assert!(
+            pos(&app, b).y < 1.0,
+            "it landed on a corner and stays up on it: {}",
+            pos(&app, b)
+        );
     }
 }
 
@@ -77,12 +88,18 @@ fn without_friction_a_box_slides_down_a_ramp_at_g_sin_theta() {
     ground(&mut app, Vec3::ZERO, tilt_q);
     let p = tilt_q * Vec3::Y * 0.5;
     let b = cuboid(&mut app, Vec3::splat(0.5), 1.0, p);
-    app.world_mut().entity_mut(b).insert((Friction(1.0), Transform::from_translation(p).with_rotation(tilt_q)));
+    app.world_mut().entity_mut(b).insert((
+        Friction(1.0),
+        Transform::from_translation(p).with_rotation(tilt_q),
+    ));
     step(&mut app, 30);
     let v0 = vel(&app, b).linear.length();
     step(&mut app, 60);
     let a = vel(&app, b).linear.length() - v0;
-    assert!((a - 9.81 * theta.sin()).abs() < 0.01 * 9.81 * theta.sin(), "a = {a}");
+    assert!(
+        (a - 9.81 * theta.sin()).abs() < 0.01 * 9.81 * theta.sin(),
+        "a = {a}"
+    );
 }
 
 #[test]
@@ -113,12 +130,20 @@ fn damping_off_ignores_drag_and_wind_drags_bodies_along() {
     // Wind: a = k·(w − v), so v → w with rate k (RK4: exact to f32 rounding).
     let mut app = app_without_gravity();
     app.insert_resource(Integrator::Rk4);
-    app.insert_resource(Wind { velocity: Vec3::new(4.0, 0.0, 0.0), drag: 0.5, ..default() });
+    app.insert_resource(Wind {
+        velocity: Vec3::new(4.0, 0.0, 0.0),
+        drag: 0.5,
+        ..default()
+    });
     set(&mut app, |e| e.wind = true);
     let b = ball(&mut app, 0.5, 1.0, Vec3::ZERO, Vec3::ZERO);
     step(&mut app, 120);
     let expected = 4.0 * (1.0 - (-0.5f32 * 2.0).exp());
-    assert!((vel(&app, b).linear.x - expected).abs() < 1e-4, "{} vs {expected}", vel(&app, b).linear.x);
+    assert!(
+        (vel(&app, b).linear.x - expected).abs() < 1e-4,
+        "{} vs {expected}",
+        vel(&app, b).linear.x
+    );
 }
 
 #[test]

@@ -124,7 +124,14 @@ pub fn draw_panel(
                     }
                 });
             });
-            ui.label(format!("energy {:.2} J   momentum {:.2} kg·m/s", stats.energy, stats.momentum));
+            // The cost of the current settings (step ms above) next to their energy drift.
+            let drift = history.samples.front().map_or(0.0, |&(_, e0, _)| (stats.energy as f64 - e0) / e0.abs().max(1e-9));
+            ui.label(format!(
+                "energy {:.2} J (drift {:+.3} % over the plot)   momentum {:.2} kg·m/s",
+                stats.energy,
+                drift * 100.0,
+                stats.momentum
+            ));
             let energy: PlotPoints = history.samples.iter().map(|&(t, e, _)| [t, e]).collect();
             let momentum: PlotPoints = history.samples.iter().map(|&(t, _, p)| [t, p]).collect();
             Plot::new("energy").height(110.0).legend(Legend::default()).show(ui, |plot| {
