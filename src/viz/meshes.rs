@@ -39,15 +39,20 @@ impl Plugin for BodyMeshPlugin {
     }
 }
 
+/// A body that just got a collider and has no mesh yet.
+type NewBody = (
+    Entity,
+    &'static Collider,
+    Option<&'static RigidBody>,
+    Option<&'static Mass>,
+);
+
 fn add_body_meshes(
     mut commands: Commands,
     mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<StandardMaterial>>,
     colors: Res<MassColors>,
-    q: Query<
-        (Entity, &Collider, Option<&RigidBody>, Option<&Mass>),
-        (Added<Collider>, Without<Mesh3d>),
-    >,
+    q: Query<NewBody, (Added<Collider>, Without<Mesh3d>)>,
 ) {
     for (e, collider, kind, mass) in &q {
         let dynamic = kind.is_some_and(|k| *k != RigidBody::Static);

@@ -70,17 +70,17 @@ pub fn solve_contacts(
         (s.dp, s.dq, s.v, s.w) = (Vec3::ZERO, Quat::IDENTITY, b.v0, b.w0);
     }
 
+    // Stiffness capped at a quarter of the substep rate.
+    let params = ContactParams {
+        friction: effects.friction,
+        hertz: settings.contact_hertz,
+        gravity: gravity.0.length(),
+        max_hertz: 0.25 / h,
+        damping_ratio: settings.contact_damping_ratio,
+        h,
+    };
     let run = |stage, world: &mut PhysicsWorld, scratch: &mut SolverScratch| {
-        run_stage(
-            stage,
-            world,
-            scratch,
-            *integrator,
-            &settings,
-            &effects,
-            gravity.0,
-            h,
-        )
+        run_stage(stage, world, scratch, *integrator, &settings, &params)
     };
     run(SolverStage::PrepareContacts, world, scratch);
     for _ in 0..n {
@@ -107,23 +107,14 @@ fn run_stage(
     scratch: &mut SolverScratch,
     integrator: Integrator,
     settings: &SolverSettings,
-    effects: &Effects,
-    gravity: Vec3,
-    h: f32,
+    params: &ContactParams,
 ) {
+    let h = params.h;
     let bodies = &mut world.solver_bodies;
     let iterations = scratch.iterations;
     match stage {
         SolverStage::PrepareContacts => {
-            // ContactParams capped at a quarter of the substep rate.
-            let stiffness = ContactParams {
-                friction: effects.friction,
-                hertz: settings.contact_hertz,
-                gravity: gravity.length(),
-                max_hertz: 0.25 / h,
-                damping_ratio: settings.contact_damping_ratio,
-                h,
-            };
+            let stiffness = *params;
             let (m, c, s) = (&world.manifolds, &world.colliders, &world.bodies);
             let ratio = prepare_constraints(m, c, s, bodies, stiffness, &mut world.constraints);
             scratch.iterations = iterations_for(settings.iterations, ratio);

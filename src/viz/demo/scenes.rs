@@ -105,7 +105,7 @@ fn run_switch(
         scenes.spawned = false;
         return;
     };
-    switch_scene(&mut commands, scene, &old);
+    switch_scene(&mut commands, scene, old);
     history.samples.clear();
     for mut cam in &mut camera {
         cam.target_focus = scene.camera.focus;
