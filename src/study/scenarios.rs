@@ -132,24 +132,29 @@ fn linear_drag(config: Config) -> (Measure, f64) {
     (m, n as f64 * h)
 }
 
+/// The 1.0 × 0.1 × 0.4 m, 1 kg box in zero gravity, spun at 10 rad/s about its
+/// intermediate (z) axis and `off_axis` rad/s about its long (x) axis.
+fn tumbling_box_app(app: &mut App, off_axis: f32) -> Entity {
+    app.insert_resource(Gravity(Vec3::ZERO));
+    let spin = Velocity {
+        linear: Vec3::ZERO,
+        angular: Vec3::new(off_axis, 0.0, 10.0),
+    };
+    let body = (
+        RigidBody::Dynamic,
+        Collider::cuboid(0.5, 0.05, 0.2),
+        Mass(1.0),
+        Transform::default(),
+        spin,
+    );
+    app.world_mut().spawn(body).id()
+}
+
 /// Spins the 1.0 × 0.1 × 0.4 m box about its intermediate axis for 10 s and compares the
 /// intervals between sign changes of that spin with `period`.
 fn tumbling_box(config: Config, off_axis: f32, period: f64) -> (Measure, f64) {
     let mut app = headless_app(config);
-    app.insert_resource(Gravity(Vec3::ZERO));
-    let b = app
-        .world_mut()
-        .spawn((
-            RigidBody::Dynamic,
-            Collider::cuboid(0.5, 0.05, 0.2),
-            Mass(1.0),
-            Transform::default(),
-            Velocity {
-                linear: Vec3::ZERO,
-                angular: Vec3::new(off_axis, 0.0, 10.0),
-            },
-        ))
-        .id();
+    let b = tumbling_box_app(&mut app, off_axis);
     let inertia = Vec3::new(0.17, 1.16, 1.01) / 12.0;
     let measure = |app: &App| {
         let (_, q, v) = state(app, b);
@@ -283,20 +288,7 @@ fn box_stack(config: Config) -> (Measure, f64) {
 /// Relative kinetic-energy change of the spinning box over 10 s, sampled every step.
 pub fn spinning_energy_series(config: Config) -> Vec<(f64, f64)> {
     let mut app = headless_app(config);
-    app.insert_resource(Gravity(Vec3::ZERO));
-    let b = app
-        .world_mut()
-        .spawn((
-            RigidBody::Dynamic,
-            Collider::cuboid(0.5, 0.05, 0.2),
-            Mass(1.0),
-            Transform::default(),
-            Velocity {
-                linear: Vec3::ZERO,
-                angular: Vec3::new(1.0, 0.0, 10.0),
-            },
-        ))
-        .id();
+    let b = tumbling_box_app(&mut app, 1.0);
     let inertia = Vec3::new(0.17, 1.16, 1.01) / 12.0;
     let energy = |app: &App| {
         let (_, q, v) = state(app, b);
