@@ -17,7 +17,7 @@ fi
 
 cargo build --release --features viz --example demo
 rm -rf "$out" && mkdir -p "$out"
-TUMBLE_TOUR="$out" WGPU_BACKEND=vulkan timeout 900 \
+TUMBLE_TOUR="$out" WGPU_BACKEND=vulkan timeout 1800 \
   xvfb-run -a -s "-screen 0 1280x720x24" "${CARGO_TARGET_DIR:-target}/release/examples/demo" \
   || { echo "demo failed (exit $?)"; exit 1; }
 
