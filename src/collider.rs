@@ -124,15 +124,6 @@ impl Shape {
         };
         (pos - half, pos + half)
     }
-
-    /// A length that says how big the shape is, for size-relative tolerances.
-    pub fn size_scale(&self) -> f32 {
-        match *self {
-            Shape::Sphere { radius } => radius,
-            Shape::Cuboid { half_extents } => half_extents.min_element(),
-            Shape::Plane { .. } => f32::INFINITY,
-        }
-    }
 }
 
 /// Half extents of the box `half` rotated by `rot`, projected on the world axes.

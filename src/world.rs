@@ -122,18 +122,4 @@ impl PhysicsWorld {
         let (b, s) = (&self.bodies[i], &self.solver_bodies[i]);
         (b.x0 + s.dp, (s.dq * b.q0).normalize())
     }
-
-    /// Total kinetic energy of the dynamic bodies (J), from the current solver state.
-    pub fn kinetic_energy(&self) -> f32 {
-        self.bodies
-            .iter()
-            .zip(&self.solver_bodies)
-            .filter(|(b, _)| b.is_dynamic())
-            .map(|(b, s)| {
-                let rot = s.dq * b.q0;
-                let w_body = rot.inverse() * s.w;
-                0.5 * s.v.length_squared() / s.inv_mass + 0.5 * w_body.dot(b.inertia * w_body)
-            })
-            .sum()
-    }
 }
