@@ -14,13 +14,17 @@ use crate::settings::SolverSettings;
 use crate::world::{ColliderEntry, PhysicsWorld, STATIC};
 
 pub use brute_force::brute_force_pairs;
-pub use sweep_and_prune::sweep_and_prune_pairs;
+pub use sweep_and_prune::SweepAndPrune;
 
 /// Updates every collider's swept, fattened bounds and finds the overlapping pairs.
-pub fn find_pairs(mut world: ResMut<PhysicsWorld>, settings: Res<SolverSettings>) {
+pub fn find_pairs(
+    mut world: ResMut<PhysicsWorld>,
+    settings: Res<SolverSettings>,
+    mut sap: Local<SweepAndPrune>,
+) {
     let world = &mut *world;
     update_bounds(world, settings.speculative_margin);
-    sweep_and_prune_pairs(&world.colliders, &mut world.pairs);
+    sap.pairs(&world.colliders, &mut world.pairs);
 }
 
 /// Bounds over the start and free-end poses, fattened by `margin`.
