@@ -83,15 +83,20 @@ pub fn write_collision_messages(
     mut world: ResMut<PhysicsWorld>,
     mut started: MessageWriter<CollisionStarted>,
     mut ended: MessageWriter<CollisionEnded>,
+    mut scratch: Local<(HashSet<Entity>, HashSet<(Entity, Entity)>)>,
 ) {
     let world = &mut *world;
-    let asleep: HashSet<Entity> = world
-        .colliders
-        .iter()
-        .filter(|c| c.asleep)
-        .map(|c| c.entity)
-        .collect();
-    let mut now: HashSet<(Entity, Entity)> = HashSet::with_capacity(world.touching.len());
+    // Both sets are kept between steps (cleared, not reallocated).
+    let (asleep, now) = &mut *scratch;
+    asleep.clear();
+    now.clear();
+    asleep.extend(
+        world
+            .colliders
+            .iter()
+            .filter(|c| c.asleep)
+            .map(|c| c.entity),
+    );
     for m in world
         .manifolds
         .iter()
@@ -107,10 +112,10 @@ pub fn write_collision_messages(
             ended.write(CollisionEnded { a, b });
         }
     }
-    for &(a, b) in &now {
+    for &(a, b) in now.iter() {
         if !world.touching.contains(&(a, b)) {
             started.write(CollisionStarted { a, b });
         }
     }
-    world.touching = now;
+    std::mem::swap(&mut world.touching, now);
 }
