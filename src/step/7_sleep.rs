@@ -17,6 +17,7 @@ pub fn update_sleep(
     global: Res<GlobalForce>,
     ticks: SystemChangeTick,
     mut bodies: Query<(&mut SleepTimer, &mut Velocity)>,
+    mut scratch: Local<(Vec<u32>, Vec<f32>)>,
 ) {
     let world = &mut *world;
     for &e in &world.wake {
@@ -30,27 +31,31 @@ pub fn update_sleep(
         b.sleep_time = if still { b.sleep_time + world.dt } else { 0.0 };
     }
     // Islands: bodies joined by contacts (static colliders don't join islands).
-    let mut parent: Vec<u32> = (0..n as u32).collect();
+    // Union-find parents and each island's least still time, kept between steps.
+    let (parent, least) = &mut *scratch;
+    parent.clear();
+    parent.extend(0..n as u32);
     for m in &world.manifolds {
         let (a, b) = (
             world.colliders[m.a as usize].body,
             world.colliders[m.b as usize].body,
         );
         if a != STATIC && b != STATIC {
-            let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
+            let (ra, rb) = (find(parent, a), find(parent, b));
             parent[ra.max(rb) as usize] = ra.min(rb);
         }
     }
     // An island sleeps when its least-still body has been still long enough; a woken
     // sleeper in the island keeps it awake.
-    let mut least = vec![f32::INFINITY; n];
+    least.clear();
+    least.resize(n, f32::INFINITY);
     for i in 0..n {
-        let root = find(&mut parent, i as u32) as usize;
+        let root = find(parent, i as u32) as usize;
         least[root] = least[root].min(world.bodies[i].sleep_time);
     }
     for i in 0..n {
         let body = &world.bodies[i];
-        let root = find(&mut parent, i as u32) as usize;
+        let root = find(parent, i as u32) as usize;
         let Ok((mut timer, mut vel)) = bodies.get_mut(body.entity) else {
             continue;
         };
