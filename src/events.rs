@@ -77,13 +77,16 @@ impl PhysicsWorld {
     }
 }
 
+/// Sleeping entities and this step's touching pairs, reused every step.
+type MessageScratch = (HashSet<Entity>, HashSet<(Entity, Entity)>);
+
 /// Compares this step's touching pairs with last step's and writes the messages. Pairs
 /// with a sleeping body keep their state: sleeping is not separating.
 pub fn write_collision_messages(
     mut world: ResMut<PhysicsWorld>,
     mut started: MessageWriter<CollisionStarted>,
     mut ended: MessageWriter<CollisionEnded>,
-    mut scratch: Local<(HashSet<Entity>, HashSet<(Entity, Entity)>)>,
+    mut scratch: Local<MessageScratch>,
 ) {
     let world = &mut *world;
     // Both sets are kept between steps (cleared, not reallocated).
