@@ -10,6 +10,7 @@ use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use tumble::prelude::*;
 use tumble::scene::SceneDesc;
+use tumble::timings::{STAGES, StepTimings};
 
 const ROUNDS: usize = 9;
 const STEPS: usize = 30;
@@ -18,6 +19,8 @@ struct Case {
     label: String,
     app: App,
     samples: Vec<f64>,
+    /// Per-stage ms of each step, summed over a round.
+    stages: Vec<[f64; STAGES.len()]>,
 }
 
 fn app_for(scene: &SceneDesc, effects: Effects) -> App {
@@ -40,11 +43,13 @@ fn cases(scene: &SceneDesc, needed: Effects) -> Vec<Case> {
             label: "only what it needs".into(),
             app: app_for(scene, needed),
             samples: vec![],
+            stages: vec![],
         },
         Case {
             label: "all effects".into(),
             app: app_for(scene, Effects::ALL),
             samples: vec![],
+            stages: vec![],
         },
     ];
     let names: Vec<&str> = needed.clone().toggles().iter().map(|(n, _)| *n).collect();
@@ -60,6 +65,7 @@ fn cases(scene: &SceneDesc, needed: Effects) -> Vec<Case> {
             label: format!("+ {name}"),
             app: app_for(scene, with),
             samples: vec![],
+            stages: vec![],
         });
     }
     out
@@ -75,24 +81,44 @@ fn run(title: &str, scene: &SceneDesc, needed: Effects) {
     for _ in 0..ROUNDS {
         for case in cases.iter_mut() {
             let started = Instant::now();
+            let mut stages = [0.0; STAGES.len()];
             for _ in 0..STEPS {
                 case.app.update();
+                let t = case.app.world().resource::<StepTimings>();
+                for (sum, ms) in stages.iter_mut().zip(t.stage_ms) {
+                    *sum += ms / STEPS as f64;
+                }
             }
+            case.stages.push(stages);
             case.samples
                 .push(started.elapsed().as_secs_f64() * 1e3 / STEPS as f64);
         }
     }
-    let base = median(&mut cases[0].samples.clone());
+    let step = |c: &Case| {
+        let mut totals: Vec<f64> = c.stages.iter().map(|s| s.iter().sum()).collect();
+        median(&mut totals)
+    };
+    let base = step(&cases[0]);
     println!(
-        "\n### {title}\n\n| effects | ms / step | × needed | marginal ms |\n|---|---:|---:|---:|"
+        "\n### {title}\n\n| effects | step ms | × needed | marginal ms | app update ms | {} |\n|---|---:|---:|---:|---:|{}",
+        STAGES.join(" | "),
+        "---:|".repeat(STAGES.len())
     );
     for case in cases.iter_mut() {
-        let m = median(&mut case.samples);
+        let m = step(case);
+        let per_stage: Vec<String> = (0..STAGES.len())
+            .map(|i| {
+                let mut v: Vec<f64> = case.stages.iter().map(|s| s[i]).collect();
+                format!("{:.3}", median(&mut v))
+            })
+            .collect();
         println!(
-            "| {} | {m:.3} | {:.2} | {:+.3} |",
+            "| {} | {m:.3} | {:.2} | {:+.3} | {:.3} | {} |",
             case.label,
             m / base,
-            m - base
+            m - base,
+            median(&mut case.samples),
+            per_stage.join(" | ")
         );
     }
 }

@@ -114,13 +114,10 @@ pub struct PhysicsRejected {
 
 /// Marks a body that is asleep: it keeps its place and costs only a wake check. Tumble adds
 /// and removes it (see [`SleepSettings`](crate::settings::SleepSettings)); remove it to
-/// wake a body, insert `Sleeping::default()` to start one asleep. Changing a sleeping
+/// wake a body, insert `Sleeping` to start one asleep. Changing a sleeping
 /// body's `Transform`, `Velocity` or `ExternalForce` wakes it.
 #[derive(Component, Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Sleeping {
-    /// When it fell asleep; later changes to its components are the user's and wake it.
-    pub(crate) since: bevy::ecs::change_detection::Tick,
-}
+pub struct Sleeping;
 
 /// How long (s) a body has been slow enough to sleep. Kept by tumble.
 #[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq)]

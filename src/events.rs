@@ -95,7 +95,8 @@ pub fn write_collision_messages(
     now.clear();
     asleep.extend(
         world
-            .colliders
+            .fixed
+            .entries()
             .iter()
             .filter(|c| c.asleep)
             .map(|c| c.entity),

@@ -99,7 +99,7 @@ impl Plugin for TumblePlugin {
         app.add_systems(
             FixedUpdate,
             (
-                (stamp::<0>, prepare::prepare_bodies)
+                (stamp::<0>, prepare::sync_fixed_set, prepare::prepare_bodies)
                     .chain()
                     .in_set(S::Prepare),
                 (

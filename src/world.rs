@@ -5,6 +5,7 @@ use bevy::prelude::*;
 
 use crate::body::RigidBody;
 use crate::collider::Shape;
+use crate::step::broad_phase::FixedSet;
 use crate::step::narrow_phase::Manifold;
 use crate::step::solve::ContactConstraint;
 
@@ -89,15 +90,20 @@ pub struct ColliderEntry {
     pub aabb_max: Vec3,
 }
 
-/// The simulation's working state. Rebuilt by prepare each step; the contact cache
-/// survives between steps for warm starting.
+/// The simulation's working state. The awake bodies are gathered by prepare each step;
+/// the fixed set and the contact cache survive between steps.
 #[derive(Resource, Default)]
 pub struct PhysicsWorld {
     /// Hot solver state, one per dynamic or kinematic body.
     pub solver_bodies: Vec<SolverBody>,
     /// Cold per-body data, parallel to `solver_bodies`.
     pub bodies: Vec<BodyState>,
+    /// This step's colliders: the awake ones, then the fixed ones the broad phase found
+    /// near them (copied from `fixed`).
     pub colliders: Vec<ColliderEntry>,
+    /// Static colliders and sleeping bodies, kept between steps and updated only when
+    /// they change.
+    pub fixed: FixedSet,
     /// Candidate collider pairs from the broad phase, as indices into `colliders`.
     pub pairs: Vec<(u32, u32)>,
     /// Contact manifolds from the narrow phase.

@@ -1,8 +1,7 @@
 //! Stage 7, sleep: bodies that have been still for a while fall asleep together with
 //! everything they touch (an island), and sleeping bodies that were touched wake up.
-//! A sleeping body is gathered as a static collider: it costs a wake check, nothing more.
+//! A sleeping body moves to the fixed set (see prepare): it costs a wake check, nothing more.
 
-use bevy::ecs::system::SystemChangeTick;
 use bevy::prelude::*;
 
 use crate::body::{RigidBody, SleepTimer, Sleeping, Velocity};
@@ -15,7 +14,6 @@ pub fn update_sleep(
     mut world: ResMut<PhysicsWorld>,
     settings: Res<SleepSettings>,
     global: Res<GlobalForce>,
-    ticks: SystemChangeTick,
     mut bodies: Query<(&mut SleepTimer, &mut Velocity)>,
     mut scratch: Local<(Vec<u32>, Vec<f32>)>,
 ) {
@@ -63,9 +61,7 @@ pub fn update_sleep(
         let pushed = global.0 != Vec3::ZERO;
         if body.kind == RigidBody::Dynamic && !pushed && least[root] >= settings.time_to_sleep {
             *vel = Velocity::ZERO;
-            commands.entity(body.entity).insert(Sleeping {
-                since: ticks.this_run(),
-            });
+            commands.entity(body.entity).insert(Sleeping);
         }
     }
 }

@@ -3,7 +3,7 @@
 //! touched only by prepare (1) and writeback (6). Stages 2–5 are plain functions over the
 //! slices in [`PhysicsWorld`](crate::PhysicsWorld).
 
-#[path = "1_prepare.rs"]
+#[path = "1_prepare/mod.rs"]
 pub mod prepare;
 
 #[path = "1b_forces.rs"]

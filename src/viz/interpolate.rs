@@ -62,8 +62,14 @@ fn restore_poses(mut q: Query<(&mut Transform, &mut PoseHistory)>) {
     for (mut t, mut h) in &mut q {
         match h.shown {
             Some(shown) if shown == iso(&t) => {
-                t.translation = h.current.translation.into();
-                t.rotation = h.current.rotation;
+                // Only a real change is written: a still body (asleep, static) must not
+                // look changed, or physics would take it for the user's move and wake it.
+                let true_pose = Transform {
+                    translation: h.current.translation.into(),
+                    rotation: h.current.rotation,
+                    ..*t
+                };
+                t.set_if_neq(true_pose);
             }
             Some(_) => {
                 // Moved by the user since we drew it: that is the new truth.
@@ -79,8 +85,20 @@ fn restore_poses(mut q: Query<(&mut Transform, &mut PoseHistory)>) {
 fn blend_poses(time: Res<Time<Fixed>>, mut q: Query<(&mut Transform, &mut PoseHistory)>) {
     let a = time.overstep_fraction();
     for (mut t, mut h) in &mut q {
-        t.translation = Vec3::from(h.previous.translation).lerp(h.current.translation.into(), a);
-        t.rotation = h.previous.rotation.slerp(h.current.rotation, a);
+        let blended = if h.previous == h.current {
+            h.current
+        } else {
+            Isometry3d::new(
+                Vec3::from(h.previous.translation).lerp(h.current.translation.into(), a),
+                h.previous.rotation.slerp(h.current.rotation, a),
+            )
+        };
+        let shown = Transform {
+            translation: blended.translation.into(),
+            rotation: blended.rotation,
+            ..*t
+        };
+        t.set_if_neq(shown);
         h.shown = Some(iso(&t));
     }
 }

@@ -10,6 +10,10 @@ use bevy::prelude::*;
 /// Solves for ω₂ (body frame) by two Newton iterations from ω₂ = ω₁, with the Jacobian
 /// J = I + (h/2)·(skew(ω_m)·I − skew(I·ω_m)).
 pub fn solve_gyroscopic_midpoint(inertia: Vec3, w1: Vec3, torque: Vec3, h: f32) -> Vec3 {
+    // Isotropic inertia (a sphere): ω_m × I·ω_m = 0, and the solve is exact in one line.
+    if inertia.x == inertia.y && inertia.y == inertia.z {
+        return w1 + h * torque / inertia.x;
+    }
     let i = Mat3::from_diagonal(inertia);
     let mut w2 = w1;
     for _ in 0..2 {
@@ -57,5 +61,16 @@ mod tests {
         // In the body frame |L| and energy are invariants of the exact flow.
         assert!(((inertia * w).length() - l0).abs() / l0 < 1e-4);
         assert!((w.dot(inertia * w) - e0).abs() / e0 < 1e-4);
+    }
+
+    #[test]
+    fn isotropic_shortcut_solves_the_same_equation() {
+        // For a sphere the residual of the midpoint equation must vanish at the shortcut.
+        let (inertia, w1, tau, h) = (Vec3::splat(0.4), Vec3::new(3.0, -1.0, 2.0), Vec3::X, 0.01);
+        let w2 = solve_gyroscopic_midpoint(inertia, w1, tau, h);
+        let wm = 0.5 * (w1 + w2);
+        let residual = inertia * (w2 - w1) + h * wm.cross(inertia * wm) - h * tau;
+        assert!(residual.length() < 1e-6, "{residual}");
+        assert!((w2 - w1 - h * tau / 0.4).length() < 1e-6);
     }
 }

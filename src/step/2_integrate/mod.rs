@@ -87,7 +87,9 @@ pub fn free_substep(
         Integrator::SemiImplicitEuler => semi_implicit::linear(f, v, h),
         Integrator::Rk4 => rk4::linear(f, v, h),
     };
-    let (q, w) = if body.rotation_locked {
+    // Locked, or not turning and no torque: the angular state stays exactly as it is
+    // for every integrator (α = 0), so none of the angular math runs.
+    let (q, w) = if body.rotation_locked || (w == Vec3::ZERO && f.torque == Vec3::ZERO) {
         (q, Vec3::ZERO)
     } else {
         match integrator {

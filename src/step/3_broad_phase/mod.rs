@@ -6,6 +6,7 @@
 //! as the reference it is tested against.
 
 mod brute_force;
+mod fixed_set;
 mod sweep_and_prune;
 
 use bevy::prelude::*;
@@ -14,17 +15,59 @@ use crate::settings::SolverSettings;
 use crate::world::{ColliderEntry, PhysicsWorld, STATIC};
 
 pub use brute_force::brute_force_pairs;
+pub use fixed_set::FixedSet;
 pub use sweep_and_prune::SweepAndPrune;
 
-/// Updates every collider's swept, fattened bounds and finds the overlapping pairs.
+/// Buffers kept between steps: the sweep's order and, per fixed entry, its index in this
+/// step's collider list (`u32::MAX` when not copied).
+#[derive(Default)]
+pub struct BroadPhaseScratch {
+    sap: SweepAndPrune,
+    copied: Vec<u32>,
+    found: Vec<u32>,
+}
+
+/// Updates the awake colliders' swept, fattened bounds and finds the overlapping pairs:
+/// awake with awake by sweep and prune, awake with fixed (static or asleep) by asking the
+/// [`FixedSet`]. Fixed entries that something may touch are copied to the end of the
+/// step's collider list, so later stages see one list.
 pub fn find_pairs(
     mut world: ResMut<PhysicsWorld>,
     settings: Res<SolverSettings>,
-    mut sap: Local<SweepAndPrune>,
+    mut scratch: Local<BroadPhaseScratch>,
 ) {
     let world = &mut *world;
-    update_bounds(world, settings.speculative_margin);
-    sap.pairs(&world.colliders, &mut world.pairs);
+    let scratch = &mut *scratch;
+    let margin = settings.speculative_margin;
+    update_bounds(world, margin);
+    scratch.sap.pairs(&world.colliders, &mut world.pairs);
+
+    world.fixed.update_search();
+    scratch.copied.clear();
+    scratch.copied.resize(world.fixed.len(), u32::MAX);
+    let awake = world.colliders.len();
+    for ci in 0..awake {
+        let c = world.colliders[ci];
+        if c.body == STATIC {
+            continue;
+        }
+        scratch.found.clear();
+        let found = &mut scratch.found;
+        world
+            .fixed
+            .overlapping(c.aabb_min, c.aabb_max, margin, |f| found.push(f));
+        for &f in found.iter() {
+            let slot = &mut scratch.copied[f as usize];
+            if *slot == u32::MAX {
+                *slot = world.colliders.len() as u32;
+                world.colliders.push(world.fixed.entries()[f as usize]);
+            }
+            world.pairs.push((ci as u32, *slot));
+        }
+    }
+    if world.colliders.len() > awake {
+        world.pairs.sort_unstable();
+    }
 }
 
 /// Bounds over the start and free-end poses, fattened by `margin`.

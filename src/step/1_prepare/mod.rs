@@ -1,0 +1,244 @@
+//! Stage 1, prepare: validate bodies and gather the awake ones from the ECS into the
+//! contiguous arrays of [`PhysicsWorld`]; keep the fixed set (static colliders, sleeping
+//! bodies) up to date from what changed. A body with invalid input is left out, tagged
+//! with [`PhysicsRejected`], and reported once in the log by entity and field.
+
+mod fixed;
+mod validate;
+
+use bevy::ecs::query::QueryData;
+use bevy::prelude::*;
+
+use crate::body::*;
+use crate::collider::{Collider, Shape};
+use crate::effects::{Effects, GravityScale, LockRotation};
+use crate::settings::SolverSettings;
+use crate::world::{BodyState, ColliderEntry, ForceModel, PhysicsWorld, STATIC, SolverBody};
+
+pub use fixed::{InFixedSet, sync_fixed_set};
+pub use validate::validate;
+use validate::validate_force;
+
+/// The components prepare reads from each awake body.
+#[derive(QueryData)]
+pub struct BodyItem {
+    entity: Entity,
+    transform: &'static Transform,
+    collider: Option<&'static Collider>,
+    kind: &'static RigidBody,
+    velocity: Option<&'static Velocity>,
+    mass: Option<&'static Mass>,
+    restitution: Option<&'static Restitution>,
+    friction: Option<&'static Friction>,
+    force: Option<&'static ExternalForce>,
+    linear_damping: Option<&'static LinearDamping>,
+    angular_damping: Option<&'static AngularDamping>,
+    sleep_timer: Option<&'static SleepTimer>,
+    gravity_scale: Option<&'static GravityScale>,
+    lock_rotation: Has<LockRotation>,
+}
+
+/// Which entities prepare gathers each step: bodies that are not asleep, not already in
+/// the fixed set and not rejected. Colliders without a `RigidBody` are static and live
+/// in the fixed set ([`sync_fixed_set`]).
+pub type BodyQueryFilter = (
+    With<RigidBody>,
+    Without<Sleeping>,
+    Without<InFixedSet>,
+    Without<PhysicsRejected>,
+);
+
+/// Gathers every awake body into [`PhysicsWorld`] for this step. A `RigidBody::Static`
+/// met here for the first time goes into the fixed set and is not visited again.
+pub fn prepare_bodies(
+    mut commands: Commands,
+    mut world: ResMut<PhysicsWorld>,
+    time: Res<Time<Fixed>>,
+    effects: Res<Effects>,
+    settings: Res<SolverSettings>,
+    query: Query<BodyItem, BodyQueryFilter>,
+) {
+    let world = &mut *world;
+    // The fixed step's length, also when a paused app single-steps.
+    world.dt = time.timestep().as_secs_f32();
+    world.solver_bodies.clear();
+    world.bodies.clear();
+    world.colliders.clear();
+    world.wake.clear();
+    // Filled by the collision stages only when collisions are on.
+    world.pairs.clear();
+    world.manifolds.clear();
+
+    for item in &query {
+        let entity = item.entity;
+        let tf = *item.transform;
+        let kind = *item.kind;
+        if kind == RigidBody::Static {
+            commands.entity(entity).insert(InFixedSet);
+            if let Some(c) = item.collider {
+                let entry = fixed_entry(entity, &tf, c, item.friction, item.restitution);
+                match validate(&tf, &Velocity::ZERO, kind, None, Some(&c.shape)) {
+                    Ok(()) => world.fixed.insert(entry(false)),
+                    Err(e) => reject(&mut commands, entity, e),
+                }
+            }
+            continue;
+        }
+        let vel = item.velocity.copied().unwrap_or(Velocity::ZERO);
+        let shape = item.collider.map(|c| c.shape);
+        let checked = validate(&tf, &vel, kind, item.mass, shape.as_ref())
+            .and_then(|()| validate_force(item.force));
+        if let Err(e) = checked {
+            reject(&mut commands, entity, e);
+            continue;
+        }
+        let rot = tf.rotation.normalize();
+        let index = world.bodies.len() as u32;
+        let input = BodyInput {
+            entity,
+            kind,
+            pos: tf.translation,
+            rot,
+            vel,
+            mass: item.mass,
+            shape,
+            force: item.force,
+            damping: Vec2::new(
+                item.linear_damping.map_or(0.0, |d| d.0),
+                item.angular_damping.map_or(0.0, |d| d.0),
+            ),
+            gravity_scale: item.gravity_scale.map_or(1.0, |g| g.0),
+            rotation_locked: item.lock_rotation || !effects.rotation,
+        };
+        let (mut state, solver) = gather_body(input, &settings);
+        state.sleep_time = item.sleep_timer.map_or(0.0, |t| t.0);
+        world.bodies.push(state);
+        world.solver_bodies.push(solver);
+        if let Some(shape) = shape {
+            world.colliders.push(ColliderEntry {
+                entity,
+                body: index,
+                asleep: false,
+                shape,
+                pos: tf.translation,
+                rot,
+                friction: item.friction.map_or(DEFAULT_FRICTION, |f| f.0),
+                restitution: item.restitution.map_or(0.0, |r| r.0),
+                aabb_min: Vec3::ZERO,
+                aabb_max: Vec3::ZERO,
+            });
+        }
+    }
+}
+
+/// Leaves a body out of the simulation, tagged with [`PhysicsRejected`] and logged once.
+fn reject(commands: &mut Commands, entity: Entity, (field, reason): (&'static str, String)) {
+    error!("tumble: body {entity} left out of the simulation: {field} is invalid ({reason})");
+    commands
+        .entity(entity)
+        .try_remove::<InFixedSet>()
+        .insert(PhysicsRejected { field, reason });
+}
+
+/// A fixed-set entry for a collider at `tf`, given whether it is asleep.
+fn fixed_entry(
+    entity: Entity,
+    tf: &Transform,
+    collider: &Collider,
+    friction: Option<&Friction>,
+    restitution: Option<&Restitution>,
+) -> impl Fn(bool) -> ColliderEntry {
+    let entry = ColliderEntry {
+        entity,
+        body: STATIC,
+        asleep: false,
+        shape: collider.shape,
+        pos: tf.translation,
+        rot: tf.rotation.normalize(),
+        friction: friction.map_or(DEFAULT_FRICTION, |f| f.0),
+        restitution: restitution.map_or(0.0, |r| r.0),
+        aabb_min: Vec3::ZERO,
+        aabb_max: Vec3::ZERO,
+    };
+    move |asleep| ColliderEntry { asleep, ..entry }
+}
+
+/// The per-body inputs of one dynamic or kinematic body.
+struct BodyInput<'a> {
+    entity: Entity,
+    kind: RigidBody,
+    pos: Vec3,
+    rot: Quat,
+    vel: Velocity,
+    mass: Option<&'a Mass>,
+    shape: Option<Shape>,
+    force: Option<&'a ExternalForce>,
+    damping: Vec2,
+    gravity_scale: f32,
+    rotation_locked: bool,
+}
+
+/// Builds a body's solver state. Only its own `ExternalForce` goes into the force model
+/// here; gravity, drag, wind and the global push are the force stage's effects.
+fn gather_body(b: BodyInput, settings: &SolverSettings) -> (BodyState, SolverBody) {
+    // A dynamic body without a collider rotates like a solid ball of 0.5 m radius.
+    let shape = b.shape.unwrap_or(Shape::Sphere { radius: 0.5 });
+    let dynamic = b.kind == RigidBody::Dynamic;
+    let m = b.mass.map_or(shape.volume() * DEFAULT_DENSITY, |m| m.0);
+    let inertia = shape.principal_inertia(m);
+    let inv_mass = if dynamic { 1.0 / m } else { 0.0 };
+    let inv_inertia = if dynamic && !b.rotation_locked {
+        inertia.recip()
+    } else {
+        Vec3::ZERO
+    };
+    let forces = match (dynamic, b.force) {
+        (true, Some(f)) => ForceModel {
+            accel: f.force * inv_mass,
+            torque: f.torque,
+            ..default()
+        },
+        _ => ForceModel::default(),
+    };
+    let v = b.vel.linear.clamp_length_max(settings.max_linear_speed);
+    let w = if b.rotation_locked {
+        Vec3::ZERO
+    } else {
+        b.vel.angular
+    };
+    let state = BodyState {
+        entity: b.entity,
+        kind: b.kind,
+        x0: b.pos,
+        q0: b.rot,
+        v0: v,
+        w0: w,
+        inertia,
+        inv_inertia,
+        forces,
+        damping: if dynamic {
+            b.damping.max(Vec2::ZERO)
+        } else {
+            Vec2::ZERO
+        },
+        gravity_scale: b.gravity_scale,
+        rotation_locked: b.rotation_locked && dynamic,
+        in_contact: false,
+        sleep_time: 0.0,
+    };
+    let solver = SolverBody {
+        v,
+        w,
+        dp: Vec3::ZERO,
+        dq: Quat::IDENTITY,
+        inv_mass,
+        inv_inertia: world_inv_inertia(b.rot, inv_inertia),
+    };
+    (state, solver)
+}
+
+/// R · diag(inv_principal) · Rᵀ.
+pub fn world_inv_inertia(rot: Quat, inv_principal: Vec3) -> Mat3 {
+    let r = Mat3::from_quat(rot);
+    r * Mat3::from_diagonal(inv_principal) * r.transpose()
+}

@@ -1,0 +1,235 @@
+//! The fixed set: static colliders and sleeping bodies, kept between steps.
+//!
+//! Nothing in it moves, so its bounds are computed once, when an entry is inserted, and its
+//! search order only when the set changes. Each step, the broad phase asks it for the
+//! entries that overlap an awake collider's box; entries near nothing awake cost nothing.
+//!
+//! Search: entries are sorted by their lower x bound. A query box [lo, hi] can only meet
+//! entries whose lower x lies in [lo.x − widest, hi.x], found by binary search, where
+//! `widest` is the widest entry along x. A few very wide entries (infinite planes, long
+//! walls) would make that window the whole set, so entries more than [`WIDE_FACTOR`] times
+//! the median width sit in a short list that every query tests.
+
+use bevy::platform::collections::HashMap;
+use bevy::prelude::*;
+
+use crate::world::{ColliderEntry, STATIC};
+
+/// Entries wider along x than this many median widths go in the always-tested list.
+pub const WIDE_FACTOR: f32 = 8.0;
+
+#[derive(Default, Debug, Clone)]
+pub struct FixedSet {
+    entries: Vec<ColliderEntry>,
+    /// Where each entity's entry is in `entries`.
+    slots: HashMap<Entity, u32>,
+    /// Indices of the ordinary entries, by lower x bound.
+    sorted: Vec<u32>,
+    /// Indices of the very wide entries.
+    wide: Vec<u32>,
+    /// Widest ordinary entry along x.
+    widest: f32,
+    /// Entries changed since `sorted` and `wide` were built.
+    dirty: bool,
+}
+
+impl FixedSet {
+    pub fn len(&self) -> usize {
+        self.entries.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.entries.is_empty()
+    }
+
+    pub fn entries(&self) -> &[ColliderEntry] {
+        &self.entries
+    }
+
+    pub fn get(&self, entity: Entity) -> Option<&ColliderEntry> {
+        self.slots.get(&entity).map(|&i| &self.entries[i as usize])
+    }
+
+    pub fn contains(&self, entity: Entity) -> bool {
+        self.slots.contains_key(&entity)
+    }
+
+    /// Puts `entry` in the set (replacing the entity's old entry) with its bounds at its
+    /// pose. Its `body` is set to [`STATIC`].
+    pub fn insert(&mut self, mut entry: ColliderEntry) {
+        (entry.aabb_min, entry.aabb_max) = entry.shape.aabb(entry.pos, entry.rot);
+        entry.body = STATIC;
+        match self.slots.get(&entry.entity) {
+            Some(&i) => self.entries[i as usize] = entry,
+            None => {
+                self.slots.insert(entry.entity, self.entries.len() as u32);
+                self.entries.push(entry);
+            }
+        }
+        self.dirty = true;
+    }
+
+    /// Takes the entity's entry out; returns whether it was there.
+    pub fn remove(&mut self, entity: Entity) -> bool {
+        let Some(i) = self.slots.remove(&entity) else {
+            return false;
+        };
+        self.entries.swap_remove(i as usize);
+        if let Some(moved) = self.entries.get(i as usize) {
+            self.slots.insert(moved.entity, i);
+        }
+        self.dirty = true;
+        true
+    }
+
+    /// Rebuilds the search order if the set changed since the last call.
+    pub fn update_search(&mut self) {
+        if !self.dirty {
+            return;
+        }
+        self.dirty = false;
+        let width = |c: &ColliderEntry| c.aabb_max.x - c.aabb_min.x;
+        let mut widths: Vec<f32> = self.entries.iter().map(width).collect();
+        widths.sort_by(f32::total_cmp);
+        let median = widths.get(widths.len() / 2).copied().unwrap_or(0.0);
+        let limit = WIDE_FACTOR * median;
+        self.sorted.clear();
+        self.wide.clear();
+        self.widest = 0.0;
+        for (i, c) in self.entries.iter().enumerate() {
+            let w = width(c);
+            if w.is_finite() && w <= limit {
+                self.sorted.push(i as u32);
+                self.widest = self.widest.max(w);
+            } else {
+                self.wide.push(i as u32);
+            }
+        }
+        let entries = &self.entries;
+        self.sorted.sort_by(|&a, &b| {
+            entries[a as usize]
+                .aabb_min
+                .x
+                .total_cmp(&entries[b as usize].aabb_min.x)
+        });
+    }
+
+    /// Calls `found` with the index of every entry whose bounds, fattened by `margin`,
+    /// overlap [lo, hi]. Call [`update_search`](Self::update_search) after changes first.
+    pub fn overlapping(&self, lo: Vec3, hi: Vec3, margin: f32, mut found: impl FnMut(u32)) {
+        debug_assert!(!self.dirty, "FixedSet searched before update_search");
+        let (lo, hi) = (lo - Vec3::splat(margin), hi + Vec3::splat(margin));
+        let overlaps = |i: u32| {
+            let c = &self.entries[i as usize];
+            c.aabb_min.cmple(hi).all() && lo.cmple(c.aabb_max).all()
+        };
+        let key = |i: &u32| self.entries[*i as usize].aabb_min.x;
+        let start = self.sorted.partition_point(|i| key(i) < lo.x - self.widest);
+        for &i in &self.sorted[start..] {
+            if key(&i) > hi.x {
+                break;
+            }
+            if overlaps(i) {
+                found(i);
+            }
+        }
+        for &i in &self.wide {
+            if overlaps(i) {
+                found(i);
+            }
+        }
+    }
+
+    /// The reference for [`overlapping`](Self::overlapping): every entry tested.
+    pub fn overlapping_brute_force(&self, lo: Vec3, hi: Vec3, margin: f32) -> Vec<u32> {
+        let (lo, hi) = (lo - Vec3::splat(margin), hi + Vec3::splat(margin));
+        (0..self.entries.len() as u32)
+            .filter(|&i| {
+                let c = &self.entries[i as usize];
+                c.aabb_min.cmple(hi).all() && lo.cmple(c.aabb_max).all()
+            })
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::collider::Collider;
+
+    fn entry(entity: u32, collider: Collider, pos: Vec3) -> ColliderEntry {
+        ColliderEntry {
+            entity: Entity::from_raw_u32(entity).unwrap(),
+            body: 0,
+            asleep: false,
+            shape: collider.shape,
+            pos,
+            rot: Quat::IDENTITY,
+            friction: 0.5,
+            restitution: 0.0,
+            aabb_min: Vec3::ZERO,
+            aabb_max: Vec3::ZERO,
+        }
+    }
+
+    fn query(set: &FixedSet, lo: Vec3, hi: Vec3) -> Vec<u32> {
+        let mut out = vec![];
+        set.overlapping(lo, hi, 0.01, |i| out.push(i));
+        out.sort_unstable();
+        out
+    }
+
+    #[test]
+    fn finds_what_brute_force_finds_with_a_plane_and_a_long_wall() {
+        let mut set = FixedSet::default();
+        set.insert(entry(1, Collider::plane(), Vec3::ZERO));
+        set.insert(entry(
+            2,
+            Collider::cuboid(40.0, 1.0, 0.5),
+            Vec3::new(0.0, 1.0, 5.0),
+        ));
+        for i in 0..200u32 {
+            let p = Vec3::new(
+                (i % 20) as f32 * 1.5 - 15.0,
+                0.5,
+                (i / 20) as f32 * 1.5 - 7.0,
+            );
+            set.insert(entry(10 + i, Collider::sphere(0.5), p));
+        }
+        set.update_search();
+        for k in 0..100 {
+            let c = Vec3::new(
+                k as f32 * 0.37 - 18.0,
+                (k % 7) as f32 * 0.4,
+                k as f32 * 0.21 - 9.0,
+            );
+            let (lo, hi) = (c - Vec3::splat(0.3), c + Vec3::splat(0.3 + k as f32 * 0.05));
+            assert_eq!(
+                query(&set, lo, hi),
+                set.overlapping_brute_force(lo, hi, 0.01)
+            );
+        }
+    }
+
+    #[test]
+    fn insert_replaces_and_remove_keeps_the_others_findable() {
+        let mut set = FixedSet::default();
+        let a = entry(1, Collider::sphere(0.5), Vec3::ZERO);
+        set.insert(a);
+        set.insert(entry(2, Collider::sphere(0.5), Vec3::X * 3.0));
+        set.insert(ColliderEntry {
+            pos: Vec3::X * 10.0,
+            ..a
+        });
+        assert_eq!(set.len(), 2);
+        assert_eq!(set.get(a.entity).unwrap().body, STATIC);
+        set.update_search();
+        assert!(query(&set, Vec3::splat(-0.2), Vec3::splat(0.2)).is_empty());
+        assert!(set.remove(a.entity));
+        assert!(!set.remove(a.entity));
+        set.update_search();
+        let near_second = query(&set, Vec3::new(2.9, -0.1, -0.1), Vec3::new(3.1, 0.1, 0.1));
+        assert_eq!(near_second.len(), 1);
+        assert_eq!(set.entries()[near_second[0] as usize].pos, Vec3::X * 3.0);
+    }
+}
