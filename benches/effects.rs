@@ -2,7 +2,7 @@
 //! everything on, and with each other effect added alone. Prints a table (median step
 //! time of interleaved rounds, single-threaded release build).
 //!
-//! `cargo bench --bench effects`
+//! `cargo bench --bench effects [-- <title filter>]`
 
 use std::time::Instant;
 
@@ -23,50 +23,46 @@ struct Case {
     stages: Vec<[f64; STAGES.len()]>,
 }
 
-fn app_for(scene: &SceneDesc, effects: Effects) -> App {
-    let mut app = App::new();
-    app.add_plugins((MinimalPlugins, TransformPlugin, TumblePlugin::default()))
-        .insert_resource(TimeUpdateStrategy::FixedTimesteps(1));
-    app.update();
-    scene.spawn_into(app.world_mut());
-    app.insert_resource(effects);
-    app.insert_resource(GlobalForce(Vec3::new(0.5, 0.0, 0.0)));
-    for _ in 0..20 {
+impl Case {
+    /// A headless app with `effects`, set up by `setup` and warmed up for 20 steps.
+    fn new(label: impl Into<String>, effects: Effects, setup: impl FnOnce(&mut World)) -> Self {
+        let mut app = App::new();
+        app.add_plugins((MinimalPlugins, TransformPlugin, TumblePlugin::default()))
+            .insert_resource(TimeUpdateStrategy::FixedTimesteps(1));
         app.update();
+        setup(app.world_mut());
+        app.insert_resource(effects);
+        app.insert_resource(GlobalForce(Vec3::new(0.5, 0.0, 0.0)));
+        for _ in 0..20 {
+            app.update();
+        }
+        Self {
+            label: label.into(),
+            app,
+            samples: vec![],
+            stages: vec![],
+        }
     }
-    app
 }
 
-fn cases(scene: &SceneDesc, needed: Effects) -> Vec<Case> {
+/// The scene with only what it needs, with everything, with each other effect added
+/// alone, and with each needed effect taken away alone.
+fn effect_cases(scene: &SceneDesc, needed: Effects) -> Vec<Case> {
+    let spawn = |w: &mut World| {
+        scene.spawn_into(w);
+    };
     let mut out = vec![
-        Case {
-            label: "only what it needs".into(),
-            app: app_for(scene, needed),
-            samples: vec![],
-            stages: vec![],
-        },
-        Case {
-            label: "all effects".into(),
-            app: app_for(scene, Effects::ALL),
-            samples: vec![],
-            stages: vec![],
-        },
+        Case::new("only what it needs", needed, spawn),
+        Case::new("all effects", Effects::ALL, spawn),
     ];
-    let names: Vec<&str> = needed.clone().toggles().iter().map(|(n, _)| *n).collect();
-    for (i, name) in names.into_iter().enumerate() {
-        let mut with = needed;
-        let toggles = with.toggles();
-        let (_, on) = toggles.into_iter().nth(i).unwrap();
-        if *on {
-            continue;
-        }
-        *on = true;
-        out.push(Case {
-            label: format!("+ {name}"),
-            app: app_for(scene, with),
-            samples: vec![],
-            stages: vec![],
-        });
+    let count = needed.clone().toggles().len();
+    for i in 0..count {
+        let mut changed = needed;
+        let mut toggles = changed.toggles();
+        let (name, on) = &mut toggles[i];
+        let label = format!("{} {name}", if **on { "−" } else { "+" });
+        **on = !**on;
+        out.push(Case::new(label, changed, spawn));
     }
     out
 }
@@ -76,8 +72,21 @@ fn median(v: &mut [f64]) -> f64 {
     v[v.len() / 2]
 }
 
-fn run(title: &str, scene: &SceneDesc, needed: Effects) {
-    let mut cases = cases(scene, needed);
+/// Whether a table was asked for: `cargo bench --bench effects -- pyramid` runs only the
+/// tables whose title contains "pyramid".
+fn wanted(title: &str) -> bool {
+    let filters: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| !a.starts_with("--"))
+        .collect();
+    filters.is_empty() || filters.iter().any(|f| title.contains(f.as_str()))
+}
+
+fn run(title: &str, cases: impl FnOnce() -> Vec<Case>) {
+    if !wanted(title) {
+        return;
+    }
+    let mut cases = cases();
     for _ in 0..ROUNDS {
         for case in cases.iter_mut() {
             let started = Instant::now();
@@ -138,7 +147,9 @@ fn main() {
         *count = 1000;
         (*min, *max) = (Vec3::new(-30.0, 0.0, -30.0), Vec3::new(30.0, 60.0, 30.0));
     }
-    run("1000 balls in free flight", &free, Effects::FREE_FLIGHT);
+    run("1000 balls in free flight", || {
+        effect_cases(&free, Effects::FREE_FLIGHT)
+    });
 
     // The 385-cube pyramid: gravity, collisions, friction, rotation.
     let pyramid = load("3_pyramid.scene.ron");
@@ -150,5 +161,67 @@ fn main() {
         sleeping: false,
         ..Effects::ALL
     };
-    run("385-cube pyramid", &pyramid, needed);
+    run("385-cube pyramid", || effect_cases(&pyramid, needed));
+
+    run("a bouncing ball among 1000 boxes", still_bodies_cases);
+}
+
+/// A ball bouncing on the ground, alone and among 1000 boxes that are static, asleep or
+/// awake: static and sleeping bodies should cost only their fixed-set entry.
+fn still_bodies_cases() -> Vec<Case> {
+    let effects = Effects {
+        damping: false,
+        wind: false,
+        global_force: false,
+        ..Effects::ALL
+    };
+    let ball = |w: &mut World| {
+        w.spawn((Collider::plane(), Transform::default()));
+        w.spawn((
+            RigidBody::Dynamic,
+            Collider::sphere(0.5),
+            Restitution(0.9),
+            Transform::from_xyz(1.0, 3.0, 0.0),
+        ));
+    };
+    // A 40 × 25 field of 0.6 m cubes resting on the ground 2 m apart; the ball bounces in a
+    // gap between four of them (x = 1, z = 0), so it never touches them.
+    let boxes = |kind: RigidBody, asleep: bool| {
+        move |w: &mut World| {
+            ball(w);
+            for i in 0..1000 {
+                let (x, z) = ((i % 40) as f32 * 2.0 - 40.0, (i / 40) as f32 * 2.0 - 25.0);
+                let mut e = w.spawn((
+                    kind,
+                    Collider::cuboid(0.3, 0.3, 0.3),
+                    Transform::from_xyz(x, 0.3, z),
+                ));
+                if asleep {
+                    e.insert(Sleeping);
+                }
+            }
+        }
+    };
+    let awake = Effects {
+        sleeping: false,
+        ..effects
+    };
+    vec![
+        Case::new("the ball alone", effects, ball),
+        Case::new(
+            "+ 1000 static boxes",
+            effects,
+            boxes(RigidBody::Static, false),
+        ),
+        Case::new(
+            "+ 1000 sleeping boxes",
+            effects,
+            boxes(RigidBody::Dynamic, true),
+        ),
+        Case::new(
+            "+ 1000 awake boxes (sleeping off)",
+            awake,
+            boxes(RigidBody::Dynamic, false),
+        ),
+    ]
 }

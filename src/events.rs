@@ -77,8 +77,8 @@ impl PhysicsWorld {
     }
 }
 
-/// Sleeping entities and this step's touching pairs, reused every step.
-type MessageScratch = (HashSet<Entity>, HashSet<(Entity, Entity)>);
+/// This step's touching pairs, reused every step.
+type MessageScratch = HashSet<(Entity, Entity)>;
 
 /// Compares this step's touching pairs with last step's and writes the messages. Pairs
 /// with a sleeping body keep their state: sleeping is not separating.
@@ -89,18 +89,9 @@ pub fn write_collision_messages(
     mut scratch: Local<MessageScratch>,
 ) {
     let world = &mut *world;
-    // Both sets are kept between steps (cleared, not reallocated).
-    let (asleep, now) = &mut *scratch;
-    asleep.clear();
+    // Kept between steps (cleared, not reallocated).
+    let now = &mut *scratch;
     now.clear();
-    asleep.extend(
-        world
-            .fixed
-            .entries()
-            .iter()
-            .filter(|c| c.asleep)
-            .map(|c| c.entity),
-    );
     for m in world
         .manifolds
         .iter()
@@ -109,8 +100,9 @@ pub fn write_collision_messages(
         let (a, b) = world.manifold_entities(m);
         now.insert((a.min(b), a.max(b)));
     }
+    let asleep = |e: Entity| world.fixed.get(e).is_some_and(|c| c.asleep);
     for &(a, b) in &world.touching {
-        if asleep.contains(&a) || asleep.contains(&b) {
+        if asleep(a) || asleep(b) {
             now.insert((a, b));
         } else if !now.contains(&(a, b)) {
             ended.write(CollisionEnded { a, b });

@@ -239,6 +239,10 @@ fn gather_body(b: BodyInput, settings: &SolverSettings) -> (BodyState, SolverBod
 
 /// R · diag(inv_principal) · Rᵀ.
 pub fn world_inv_inertia(rot: Quat, inv_principal: Vec3) -> Mat3 {
+    // Isotropic (spheres, locked rotation): the same in every frame.
+    if inv_principal.x == inv_principal.y && inv_principal.y == inv_principal.z {
+        return Mat3::from_diagonal(inv_principal);
+    }
     let r = Mat3::from_quat(rot);
     r * Mat3::from_diagonal(inv_principal) * r.transpose()
 }

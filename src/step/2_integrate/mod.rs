@@ -64,6 +64,7 @@ impl<'a> Inertial<'a> {
 /// Advances the free motion of one body by `h` from orientation `q`, velocities `v`, `w`.
 /// Kinematic bodies move with constant velocity whatever the integrator; a body whose
 /// rotation is locked runs no angular integration at all.
+#[inline]
 pub fn free_substep(
     integrator: Integrator,
     kind: RigidBody,

@@ -8,8 +8,15 @@ use bevy::prelude::*;
 use super::{Inertial, rotate, solve_gyroscopic_midpoint};
 use crate::world::ForceModel;
 
+#[inline]
 pub fn linear(f: &ForceModel, v: Vec3, h: f32) -> (Vec3, Vec3) {
-    let v = (v + f.accel * h) / (1.0 + h * f.linear_damping);
+    let v = v + f.accel * h;
+    // Drag off: no division (it dominated a free body's step).
+    let v = if f.linear_damping == 0.0 {
+        v
+    } else {
+        v / (1.0 + h * f.linear_damping)
+    };
     (v * h, v)
 }
 

@@ -55,6 +55,9 @@ pub struct ContactConstraint {
     /// contact point stays under its centre as it rolls, so its anchor does not turn.
     pub turn_a: bool,
     pub turn_b: bool,
+    /// Whether each body can turn here (a dynamic body with rotation, or a spinning
+    /// kinematic one). A static body or one with `LockRotation` runs no angular terms.
+    pub spin: [bool; 2],
     pub friction: f32,
     pub restitution: f32,
     pub softness: Softness,
@@ -76,9 +79,21 @@ fn store(bodies: &mut [SolverBody], i: u32, b: SolverBody) {
     }
 }
 
+/// Whether a body has angular terms in a contact: it turns now or impulses can turn it.
+fn spins(b: &SolverBody) -> bool {
+    b.w != Vec3::ZERO || b.inv_inertia != Mat3::ZERO
+}
+
 fn effective_mass(a: &SolverBody, b: &SolverBody, ra: Vec3, rb: Vec3, dir: Vec3) -> f32 {
-    let (ca, cb) = (ra.cross(dir), rb.cross(dir));
-    let k = a.inv_mass + b.inv_mass + ca.dot(a.inv_inertia * ca) + cb.dot(b.inv_inertia * cb);
+    let angular = |s: &SolverBody, r: Vec3| {
+        let c = r.cross(dir);
+        if spins(s) {
+            c.dot(s.inv_inertia * c)
+        } else {
+            0.0
+        }
+    };
+    let k = a.inv_mass + b.inv_mass + angular(a, ra) + angular(b, rb);
     if k > 0.0 { 1.0 / k } else { 0.0 }
 }
 
@@ -105,15 +120,30 @@ fn isotropic_tangent_mass(
     if sum > 0.0 { 2.0 / sum } else { 0.0 }
 }
 
-fn relative_velocity(a: &SolverBody, b: &SolverBody, ra: Vec3, rb: Vec3) -> Vec3 {
-    (b.v + b.w.cross(rb)) - (a.v + a.w.cross(ra))
+/// Velocity of b's anchor relative to a's; the angular parts only for bodies that spin.
+#[inline]
+fn relative_velocity(a: &SolverBody, b: &SolverBody, ra: Vec3, rb: Vec3, spin: [bool; 2]) -> Vec3 {
+    let mut v = b.v - a.v;
+    if spin[0] {
+        v -= a.w.cross(ra);
+    }
+    if spin[1] {
+        v += b.w.cross(rb);
+    }
+    v
 }
 
-fn apply(a: &mut SolverBody, b: &mut SolverBody, ra: Vec3, rb: Vec3, p: Vec3) {
+/// Impulse p on b at rb, −p on a at ra; the angular parts only for bodies that spin.
+#[inline]
+fn apply(a: &mut SolverBody, b: &mut SolverBody, ra: Vec3, rb: Vec3, p: Vec3, spin: [bool; 2]) {
     a.v -= a.inv_mass * p;
-    a.w -= a.inv_inertia * ra.cross(p);
     b.v += b.inv_mass * p;
-    b.w += b.inv_inertia * rb.cross(p);
+    if spin[0] {
+        a.w -= a.inv_inertia * ra.cross(p);
+    }
+    if spin[1] {
+        b.w += b.inv_inertia * rb.cross(p);
+    }
 }
 
 /// Contact stiffness rule. A soft contact is a spring-damper tuned to the pair's
@@ -192,6 +222,7 @@ pub fn prepare_constraints(
         };
         let (sa, sb) = (body(bodies, ca.body), body(bodies, cb.body));
         let (t1, t2) = m.normal.any_orthonormal_pair();
+        let spin = [spins(&sa), spins(&sb)];
         let load: f32 = m.points().iter().map(|p| p.normal_impulse).sum();
         let (softness, r) = contact_softness(&stiffness, sa.inv_mass, sb.inv_mass, load);
         max_ratio = max_ratio.max(r);
@@ -202,8 +233,9 @@ pub fn prepare_constraints(
             normal: m.normal,
             tangent1: t1,
             tangent2: t2,
-            turn_a: !matches!(ca.shape, Shape::Sphere { .. }),
-            turn_b: !matches!(cb.shape, Shape::Sphere { .. }),
+            turn_a: spin[0] && !matches!(ca.shape, Shape::Sphere { .. }),
+            turn_b: spin[1] && !matches!(cb.shape, Shape::Sphere { .. }),
+            spin,
             friction: if stiffness.friction { m.friction } else { 0.0 },
             restitution: m.restitution,
             softness,
@@ -221,7 +253,7 @@ pub fn prepare_constraints(
                 normal_impulse: p.normal_impulse,
                 tangent_impulse: Vec2::new(p.tangent_impulse.dot(t1), p.tangent_impulse.dot(t2)),
                 max_normal_impulse: 0.0,
-                relative_velocity: relative_velocity(&sa, &sb, ra, rb).dot(m.normal),
+                relative_velocity: relative_velocity(&sa, &sb, ra, rb, spin).dot(m.normal),
             };
         }
         out.push(c);
@@ -235,7 +267,14 @@ pub fn warm_start(bodies: &mut [SolverBody], constraints: &[ContactConstraint]) 
         let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
         for p in &c.points[..c.len] {
             let t = c.tangent1 * p.tangent_impulse.x + c.tangent2 * p.tangent_impulse.y;
-            apply(&mut a, &mut b, p.ra, p.rb, c.normal * p.normal_impulse + t);
+            apply(
+                &mut a,
+                &mut b,
+                p.ra,
+                p.rb,
+                c.normal * p.normal_impulse + t,
+                c.spin,
+            );
         }
         store(bodies, c.a, a);
         store(bodies, c.b, b);
@@ -274,7 +313,7 @@ pub fn solve(
             } else {
                 (0.0, 1.0, 0.0)
             };
-            let vn = relative_velocity(&a, &b, p.ra, p.rb).dot(c.normal);
+            let vn = relative_velocity(&a, &b, p.ra, p.rb, c.spin).dot(c.normal);
             let lambda =
                 -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
             let new = (p.normal_impulse + lambda).max(0.0);
@@ -285,12 +324,12 @@ pub fn solve(
             let dl = new - p.normal_impulse;
             p.normal_impulse = new;
             p.max_normal_impulse = p.max_normal_impulse.max(new);
-            apply(&mut a, &mut b, p.ra, p.rb, c.normal * dl);
+            apply(&mut a, &mut b, p.ra, p.rb, c.normal * dl, c.spin);
         }
         // Friction, skipped for frictionless pairs (and when the effect is off).
         for p in c.points[..c.len].iter_mut().filter(|_| c.friction > 0.0) {
             // Both tangent rows from the same velocity, then clamp to the disc: a round cone.
-            let vr = relative_velocity(&a, &b, p.ra, p.rb);
+            let vr = relative_velocity(&a, &b, p.ra, p.rb, c.spin);
             let vt = Vec2::new(vr.dot(c.tangent1), vr.dot(c.tangent2));
             let old = p.tangent_impulse;
             let new = (old - p.tangent_mass * vt).clamp_length_max(c.friction * p.normal_impulse);
@@ -302,6 +341,7 @@ pub fn solve(
                 p.ra,
                 p.rb,
                 c.tangent1 * d.x + c.tangent2 * d.y,
+                c.spin,
             );
         }
         store(bodies, c.a, a);
@@ -322,13 +362,13 @@ pub fn apply_restitution(
             if p.relative_velocity > -threshold || p.max_normal_impulse == 0.0 {
                 continue;
             }
-            let vn = relative_velocity(&a, &b, p.ra, p.rb).dot(c.normal);
+            let vn = relative_velocity(&a, &b, p.ra, p.rb, c.spin).dot(c.normal);
             let lambda = -p.normal_mass * (vn + c.restitution * p.relative_velocity);
             let new = (p.normal_impulse + lambda).max(0.0);
             let dl = new - p.normal_impulse;
             p.normal_impulse = new;
             p.max_normal_impulse = p.max_normal_impulse.max(new);
-            apply(&mut a, &mut b, p.ra, p.rb, c.normal * dl);
+            apply(&mut a, &mut b, p.ra, p.rb, c.normal * dl, c.spin);
         }
         store(bodies, c.a, a);
         store(bodies, c.b, b);
