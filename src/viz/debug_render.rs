@@ -36,15 +36,16 @@ fn draw_debug(world: Res<PhysicsWorld>, settings: Res<DebugRenderSettings>, mut 
         }
     }
     if settings.aabbs {
-        for c in world
-            .colliders
-            .iter()
-            .filter(|c| c.aabb_max.is_finite() && c.aabb_min.is_finite())
-        {
-            let color = if c.body == STATIC {
-                Color::srgb(0.3, 0.3, 0.8)
-            } else {
-                Color::srgb(0.2, 0.9, 0.4)
+        // Awake colliders (swept bounds of this step), then the whole fixed set.
+        let awake = world.colliders.iter().filter(|c| c.body != STATIC);
+        for c in awake.chain(world.fixed.entries()) {
+            if !(c.aabb_max.is_finite() && c.aabb_min.is_finite()) {
+                continue;
+            }
+            let color = match (c.body == STATIC, c.asleep) {
+                (false, _) => Color::srgb(0.2, 0.9, 0.4),
+                (true, true) => Color::srgb(0.5, 0.5, 0.5),
+                (true, false) => Color::srgb(0.3, 0.3, 0.8),
             };
             let centre = 0.5 * (c.aabb_min + c.aabb_max);
             let transform = Transform::from_translation(centre).with_scale(c.aabb_max - c.aabb_min);
