@@ -4,7 +4,8 @@
 use bevy::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::body::RigidBody;
+use crate::body::{DEFAULT_DENSITY, RigidBody};
+use crate::collider::Collider;
 use crate::effects::{Effects, Wind};
 use crate::settings::Integrator;
 
@@ -105,6 +106,14 @@ impl Default for PlaneDesc {
     }
 }
 
+impl PlaneDesc {
+    /// Local +Y turned onto `normal`, then spun by `spin_deg` about it.
+    pub fn rotation(&self) -> Quat {
+        let n = self.normal.normalize_or(Vec3::Y);
+        Quat::from_axis_angle(n, self.spin_deg.to_radians()) * Quat::from_rotation_arc(Vec3::Y, n)
+    }
+}
+
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
 pub enum ShapeDesc {
     Sphere(f32),
@@ -128,6 +137,28 @@ pub struct BodyDesc {
     pub density: Option<f32>,
     pub friction: Option<f32>,
     pub restitution: Option<f32>,
+}
+
+impl BodyDesc {
+    /// `mass`, or else `density` (water's by default) times the shape's volume, kg.
+    pub fn mass(&self) -> f32 {
+        let volume = self.collider().shape.volume();
+        self.mass
+            .unwrap_or_else(|| volume * self.density.unwrap_or(DEFAULT_DENSITY))
+    }
+
+    pub fn collider(&self) -> Collider {
+        match self.shape {
+            ShapeDesc::Sphere(r) => Collider::sphere(r),
+            ShapeDesc::Cuboid(h) => Collider::cuboid(h.x, h.y, h.z),
+        }
+    }
+
+    /// The orientation from `rotation_deg` (Euler XYZ).
+    pub fn rotation(&self) -> Quat {
+        let r = self.rotation_deg * (std::f32::consts::PI / 180.0);
+        Quat::from_euler(EulerRot::XYZ, r.x, r.y, r.z)
+    }
 }
 
 impl Default for BodyDesc {

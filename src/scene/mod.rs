@@ -100,39 +100,23 @@ fn plane_bundle(p: &PlaneDesc) -> impl Bundle {
         Some(h) => Collider::plane_rect(h.x, h.y),
         None => Collider::plane(),
     };
-    let rotation = Quat::from_rotation_arc(Vec3::Y, p.normal.normalize_or(Vec3::Y));
-    let rotation =
-        Quat::from_axis_angle(p.normal.normalize_or(Vec3::Y), p.spin_deg.to_radians()) * rotation;
     (
         SceneEntity,
         Name::new("plane"),
         collider,
-        Transform::from_translation(p.position).with_rotation(rotation),
+        Transform::from_translation(p.position).with_rotation(p.rotation()),
         Friction(p.friction),
         Restitution(p.restitution),
     )
 }
 
 fn body_bundle(b: &BodyDesc) -> impl Bundle {
-    let collider = match b.shape {
-        ShapeDesc::Sphere(r) => Collider::sphere(r),
-        ShapeDesc::Cuboid(h) => Collider::cuboid(h.x, h.y, h.z),
-    };
-    let mass = b
-        .mass
-        .unwrap_or_else(|| collider.shape.volume() * b.density.unwrap_or(DEFAULT_DENSITY));
-    let r = b.rotation_deg * (std::f32::consts::PI / 180.0);
     (
         SceneEntity,
         b.kind,
-        collider,
-        Mass(mass),
-        Transform::from_translation(b.position).with_rotation(Quat::from_euler(
-            EulerRot::XYZ,
-            r.x,
-            r.y,
-            r.z,
-        )),
+        b.collider(),
+        Mass(b.mass()),
+        Transform::from_translation(b.position).with_rotation(b.rotation()),
         Velocity {
             linear: b.velocity,
             angular: b.angular_velocity,

@@ -1,0 +1,164 @@
+//! Side by side: the same scene files stepped by tumble, avian3d 0.7 and bevy_rapier3d
+//! 0.36, each in its own headless Bevy app (MinimalPlugins + TransformPlugin + the physics
+//! plugin, one 60 Hz physics step per `update()`), in the same run, interleaved round by
+//! round. Prints the median time of one `update()` per engine and the ratios to tumble,
+//! and a behaviour check (how far the bodies sank and how fast they still move at the
+//! end) so that a fast engine is not fast because it did less.
+//!
+//! Each engine runs at its own defaults (tumble 4 substeps; avian 6 substeps; rapier 4
+//! solver iterations = substeps, one step) with sleeping off everywhere and a single
+//! thread everywhere (no `parallel` features).
+//!
+//! `cargo run --release -p tumble-peers [-- <scene filter>]`
+
+mod avian;
+mod rapier;
+
+use std::time::Instant;
+
+use bevy::prelude::*;
+use bevy::time::TimeUpdateStrategy;
+use tumble::scene::SceneDesc;
+
+const ROUNDS: usize = 9;
+const STEPS: usize = 20;
+const WARM_UP: usize = 30;
+
+/// One engine's app on one scene.
+struct Run {
+    engine: &'static str,
+    app: App,
+    bodies: Vec<Entity>,
+    start_y: Vec<f32>,
+    samples: Vec<f64>,
+}
+
+/// Runs plugins' `finish` and `cleanup` (which `App::run` would) and the first update,
+/// which only starts the clock.
+pub fn start(app: &mut App) {
+    app.finish();
+    app.cleanup();
+    app.update();
+}
+
+/// A headless app that runs exactly one 60 Hz fixed step per update.
+pub fn headless_app() -> App {
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, TransformPlugin))
+        .insert_resource(Time::<Fixed>::from_hz(60.0))
+        .insert_resource(TimeUpdateStrategy::FixedTimesteps(1));
+    app
+}
+
+fn tumble_app(scene: &SceneDesc) -> (App, Vec<Entity>) {
+    let mut app = headless_app();
+    app.add_plugins(tumble::TumblePlugin::default());
+    start(&mut app);
+    let bodies = scene.spawn_into(app.world_mut());
+    app.world_mut()
+        .resource_mut::<tumble::prelude::Effects>()
+        .sleeping = false;
+    (app, bodies)
+}
+
+impl Run {
+    fn new(engine: &'static str, (app, bodies): (App, Vec<Entity>)) -> Self {
+        let start_y = bodies.iter().map(|&e| y_of(&app, e)).collect();
+        Self {
+            engine,
+            app,
+            bodies,
+            start_y,
+            samples: vec![],
+        }
+    }
+
+    /// Mean drop of the bodies since the start (m) and the fastest body's speed (m/s),
+    /// from `Transform` and the finite difference of one more step.
+    fn behaviour(&mut self) -> (f32, f32) {
+        let before: Vec<Vec3> = self.bodies.iter().map(|&e| pos_of(&self.app, e)).collect();
+        self.app.update();
+        let mut drop = 0.0;
+        let mut fastest = 0.0f32;
+        for ((&e, p0), y0) in self.bodies.iter().zip(&before).zip(&self.start_y) {
+            let p = pos_of(&self.app, e);
+            drop += y0 - p.y;
+            fastest = fastest.max((p - *p0).length() * 60.0);
+        }
+        (drop / self.bodies.len().max(1) as f32, fastest)
+    }
+}
+
+fn pos_of(app: &App, e: Entity) -> Vec3 {
+    app.world()
+        .get::<Transform>(e)
+        .map_or(Vec3::NAN, |t| t.translation)
+}
+
+fn y_of(app: &App, e: Entity) -> f32 {
+    pos_of(app, e).y
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn compare(file: &str) {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes");
+    let scene = SceneDesc::load(dir.join(file)).expect("scene file");
+    let mut runs = vec![
+        Run::new("tumble", tumble_app(&scene)),
+        Run::new("avian3d", avian::app(&scene)),
+        Run::new("bevy_rapier3d", rapier::app(&scene)),
+    ];
+    for run in runs.iter_mut() {
+        for _ in 0..WARM_UP {
+            run.app.update();
+        }
+    }
+    for _ in 0..ROUNDS {
+        for run in runs.iter_mut() {
+            let started = Instant::now();
+            for _ in 0..STEPS {
+                run.app.update();
+            }
+            run.samples
+                .push(started.elapsed().as_secs_f64() * 1e3 / STEPS as f64);
+        }
+    }
+    let steps = WARM_UP + ROUNDS * STEPS + 1;
+    println!(
+        "\n### {} ({} bodies, {} steps)\n\n| engine | ms / step | × tumble | mean drop m | fastest m/s |\n|---|---:|---:|---:|---:|",
+        scene.name,
+        runs[0].bodies.len(),
+        steps
+    );
+    let base = median(&mut runs[0].samples.clone());
+    for run in runs.iter_mut() {
+        let m = median(&mut run.samples);
+        let (drop, fastest) = run.behaviour();
+        println!(
+            "| {} | {m:.3} | {:.2} | {drop:.3} | {fastest:.2} |",
+            run.engine,
+            m / base
+        );
+    }
+}
+
+fn main() {
+    let filters: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| !a.starts_with("--"))
+        .collect();
+    for file in [
+        "1_spheres_in_a_box.scene.ron",
+        "2_box_tower.scene.ron",
+        "3_pyramid.scene.ron",
+        "9_rain.scene.ron",
+    ] {
+        if filters.is_empty() || filters.iter().any(|f| file.contains(f.as_str())) {
+            compare(file);
+        }
+    }
+}
