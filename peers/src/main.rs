@@ -107,7 +107,7 @@ fn median(v: &mut [f64]) -> f64 {
 fn compare(file: &str) {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes");
     let scene = SceneDesc::load(dir.join(file)).expect("scene file");
-    let mut runs = vec![
+    let mut runs = [
         Run::new("tumble", tumble_app(&scene)),
         Run::new("avian3d", avian::app(&scene)),
         Run::new("bevy_rapier3d", rapier::app(&scene)),
