@@ -4,6 +4,7 @@
 
 use bevy::prelude::*;
 
+use super::iterate::row_velocity;
 use super::softness::Softness;
 use crate::collider::Shape;
 use crate::step::narrow_phase::{MAX_POINTS, Manifold};
@@ -28,6 +29,9 @@ pub struct ConstraintPoint {
     /// Separation at the start of the step minus n·(rb − ra), so that the current
     /// separation is this plus n·(cb − ca) for the moved anchor points ca, cb.
     pub adjusted_separation: f32,
+    /// The angular parts of the normal row and the two tangent rows.
+    pub normal_row: AngularRow,
+    pub tangent_rows: [AngularRow; 2],
     pub normal_mass: f32,
     /// One mass for both tangent rows; see [`isotropic_tangent_mass`].
     pub tangent_mass: f32,
@@ -38,6 +42,39 @@ pub struct ConstraintPoint {
     pub max_normal_impulse: f32,
     /// Normal relative velocity before the point first pushed (for restitution).
     pub relative_velocity: f32,
+}
+
+/// The angular parts of one velocity row along a direction d at a contact point:
+/// r × d for each body and their images under the body's inverse inertia (which is fixed
+/// over the step). With them a row's velocity is three dot products and its impulse
+/// three scaled additions, with no cross products or matrix products per iteration.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct AngularRow {
+    /// ra × d, rb × d.
+    pub ra: Vec3,
+    pub rb: Vec3,
+    /// Ia⁻¹ (ra × d), Ib⁻¹ (rb × d).
+    pub ia: Vec3,
+    pub ib: Vec3,
+}
+
+impl AngularRow {
+    fn new(a: &SolverBody, b: &SolverBody, ra: Vec3, rb: Vec3, d: Vec3) -> Self {
+        let (ra, rb) = (ra.cross(d), rb.cross(d));
+        Self {
+            ra,
+            rb,
+            ia: a.inv_inertia * ra,
+            ib: b.inv_inertia * rb,
+        }
+    }
+
+    /// The row's angular share of the inverse effective mass.
+    fn inv_mass(&self, spin: [bool; 2]) -> f32 {
+        let a = if spin[0] { self.ra.dot(self.ia) } else { 0.0 };
+        let b = if spin[1] { self.rb.dot(self.ib) } else { 0.0 };
+        a + b
+    }
 }
 
 /// The contact of one manifold prepared for the solver.
@@ -65,7 +102,7 @@ pub struct ContactConstraint {
     pub len: usize,
 }
 
-pub(crate) fn body(bodies: &[SolverBody], i: u32) -> SolverBody {
+pub(super) fn body(bodies: &[SolverBody], i: u32) -> SolverBody {
     if i == STATIC {
         STATIC_BODY
     } else {
@@ -73,7 +110,7 @@ pub(crate) fn body(bodies: &[SolverBody], i: u32) -> SolverBody {
     }
 }
 
-fn store(bodies: &mut [SolverBody], i: u32, b: SolverBody) {
+pub(super) fn store(bodies: &mut [SolverBody], i: u32, b: SolverBody) {
     if i != STATIC {
         bodies[i as usize] = b;
     }
@@ -84,16 +121,8 @@ fn spins(b: &SolverBody) -> bool {
     b.w != Vec3::ZERO || b.inv_inertia != Mat3::ZERO
 }
 
-fn effective_mass(a: &SolverBody, b: &SolverBody, ra: Vec3, rb: Vec3, dir: Vec3) -> f32 {
-    let angular = |s: &SolverBody, r: Vec3| {
-        let c = r.cross(dir);
-        if spins(s) {
-            c.dot(s.inv_inertia * c)
-        } else {
-            0.0
-        }
-    };
-    let k = a.inv_mass + b.inv_mass + angular(a, ra) + angular(b, rb);
+/// 1/k for an inverse effective mass k, 0 when nothing can move.
+fn mass_of(k: f32) -> f32 {
     if k > 0.0 { 1.0 / k } else { 0.0 }
 }
 
@@ -104,46 +133,9 @@ fn effective_mass(a: &SolverBody, b: &SolverBody, ra: Vec3, rb: Vec3, dir: Vec3)
 /// falls short of μN (measured: 0.4% short, 1.3% on the acceleration of a box sliding
 /// down a 0.25 rad ramp at μ = 0.2). A single mass keeps friction opposite the slip in
 /// every direction, which is also what makes the cone round.
-fn isotropic_tangent_mass(
-    a: &SolverBody,
-    b: &SolverBody,
-    ra: Vec3,
-    rb: Vec3,
-    t1: Vec3,
-    t2: Vec3,
-) -> f32 {
-    let k = |t: Vec3| {
-        let m = effective_mass(a, b, ra, rb, t);
-        if m > 0.0 { 1.0 / m } else { 0.0 }
-    };
-    let sum = k(t1) + k(t2);
-    if sum > 0.0 { 2.0 / sum } else { 0.0 }
-}
-
-/// Velocity of b's anchor relative to a's; the angular parts only for bodies that spin.
-#[inline]
-fn relative_velocity(a: &SolverBody, b: &SolverBody, ra: Vec3, rb: Vec3, spin: [bool; 2]) -> Vec3 {
-    let mut v = b.v - a.v;
-    if spin[0] {
-        v -= a.w.cross(ra);
-    }
-    if spin[1] {
-        v += b.w.cross(rb);
-    }
-    v
-}
-
-/// Impulse p on b at rb, −p on a at ra; the angular parts only for bodies that spin.
-#[inline]
-fn apply(a: &mut SolverBody, b: &mut SolverBody, ra: Vec3, rb: Vec3, p: Vec3, spin: [bool; 2]) {
-    a.v -= a.inv_mass * p;
-    b.v += b.inv_mass * p;
-    if spin[0] {
-        a.w -= a.inv_inertia * ra.cross(p);
-    }
-    if spin[1] {
-        b.w += b.inv_inertia * rb.cross(p);
-    }
+fn isotropic_tangent_mass(linear: f32, rows: &[AngularRow; 2], spin: [bool; 2]) -> f32 {
+    let k = |row: &AngularRow| linear + row.inv_mass(spin);
+    mass_of(0.5 * (k(&rows[0]) + k(&rows[1])))
 }
 
 /// Contact stiffness rule. A soft contact is a spring-damper tuned to the pair's
@@ -242,135 +234,27 @@ pub fn prepare_constraints(
             points: [ConstraintPoint::default(); MAX_POINTS],
             len: m.len,
         };
+        let linear = sa.inv_mass + sb.inv_mass;
         for (cp, p) in c.points.iter_mut().zip(m.points()) {
             let (ra, rb) = (p.point - centre(ca), p.point - centre(cb));
+            let normal_row = AngularRow::new(&sa, &sb, ra, rb, m.normal);
+            let tangent_rows = [t1, t2].map(|t| AngularRow::new(&sa, &sb, ra, rb, t));
             *cp = ConstraintPoint {
                 ra,
                 rb,
                 adjusted_separation: p.separation - m.normal.dot(rb - ra),
-                normal_mass: effective_mass(&sa, &sb, ra, rb, m.normal),
-                tangent_mass: isotropic_tangent_mass(&sa, &sb, ra, rb, t1, t2),
+                normal_row,
+                tangent_rows,
+                normal_mass: mass_of(linear + normal_row.inv_mass(spin)),
+                tangent_mass: isotropic_tangent_mass(linear, &tangent_rows, spin),
                 normal_impulse: p.normal_impulse,
                 tangent_impulse: Vec2::new(p.tangent_impulse.dot(t1), p.tangent_impulse.dot(t2)),
                 max_normal_impulse: 0.0,
-                relative_velocity: relative_velocity(&sa, &sb, ra, rb, spin).dot(m.normal),
+                relative_velocity: 0.0,
             };
+            cp.relative_velocity = row_velocity(&sa, &sb, m.normal, &normal_row, spin);
         }
         out.push(c);
     }
     max_ratio
-}
-
-/// Applies last step's accumulated impulses (already in the constraints).
-pub fn warm_start(bodies: &mut [SolverBody], constraints: &[ContactConstraint]) {
-    for c in constraints {
-        let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
-        for p in &c.points[..c.len] {
-            let t = c.tangent1 * p.tangent_impulse.x + c.tangent2 * p.tangent_impulse.y;
-            apply(
-                &mut a,
-                &mut b,
-                p.ra,
-                p.rb,
-                c.normal * p.normal_impulse + t,
-                c.spin,
-            );
-        }
-        store(bodies, c.a, a);
-        store(bodies, c.b, b);
-    }
-}
-
-/// One Gauss–Seidel pass: for each manifold, the normal rows of all its points (soft with
-/// bias, or rigid when relaxing), then the friction disc of each point clamped to μ·λn
-/// with the updated normal impulses. Accumulated impulses are clamped, never increments.
-/// Speculative points (s > 0) may close their gap, not more. Impulses act at the
-/// start-of-step anchors; the separation follows the anchors as the bodies move and turn.
-pub fn solve(
-    bodies: &mut [SolverBody],
-    constraints: &mut [ContactConstraint],
-    h: f32,
-    max_push_out: f32,
-    use_bias: bool,
-) {
-    let inv_h = 1.0 / h;
-    for c in constraints.iter_mut() {
-        let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
-        let dp = b.dp - a.dp;
-        for p in c.points[..c.len].iter_mut() {
-            let ca = if c.turn_a { a.dq * p.ra } else { p.ra };
-            let cb = if c.turn_b { b.dq * p.rb } else { p.rb };
-            let s = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
-            let (bias, mass_scale, impulse_scale) = if s > 0.0 {
-                (s * inv_h, 1.0, 0.0)
-            } else if use_bias {
-                let soft = c.softness;
-                (
-                    (soft.bias_rate * s).max(-max_push_out),
-                    soft.mass_scale,
-                    soft.impulse_scale,
-                )
-            } else {
-                (0.0, 1.0, 0.0)
-            };
-            let vn = relative_velocity(&a, &b, p.ra, p.rb, c.spin).dot(c.normal);
-            let lambda =
-                -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
-            let new = (p.normal_impulse + lambda).max(0.0);
-            if p.normal_impulse == 0.0 && new > 0.0 {
-                // First push on this point: the approach speed that restitution reverses.
-                p.relative_velocity = p.relative_velocity.min(vn);
-            }
-            let dl = new - p.normal_impulse;
-            p.normal_impulse = new;
-            p.max_normal_impulse = p.max_normal_impulse.max(new);
-            apply(&mut a, &mut b, p.ra, p.rb, c.normal * dl, c.spin);
-        }
-        // Friction, skipped for frictionless pairs (and when the effect is off).
-        for p in c.points[..c.len].iter_mut().filter(|_| c.friction > 0.0) {
-            // Both tangent rows from the same velocity, then clamp to the disc: a round cone.
-            let vr = relative_velocity(&a, &b, p.ra, p.rb, c.spin);
-            let vt = Vec2::new(vr.dot(c.tangent1), vr.dot(c.tangent2));
-            let old = p.tangent_impulse;
-            let new = (old - p.tangent_mass * vt).clamp_length_max(c.friction * p.normal_impulse);
-            p.tangent_impulse = new;
-            let d = new - old;
-            apply(
-                &mut a,
-                &mut b,
-                p.ra,
-                p.rb,
-                c.tangent1 * d.x + c.tangent2 * d.y,
-                c.spin,
-            );
-        }
-        store(bodies, c.a, a);
-        store(bodies, c.b, b);
-    }
-}
-
-/// Restitution: points that were approaching faster than `threshold` and pushed get
-/// their normal velocity driven to −e times the approach speed.
-pub fn apply_restitution(
-    bodies: &mut [SolverBody],
-    constraints: &mut [ContactConstraint],
-    threshold: f32,
-) {
-    for c in constraints.iter_mut().filter(|c| c.restitution > 0.0) {
-        let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
-        for p in c.points[..c.len].iter_mut() {
-            if p.relative_velocity > -threshold || p.max_normal_impulse == 0.0 {
-                continue;
-            }
-            let vn = relative_velocity(&a, &b, p.ra, p.rb, c.spin).dot(c.normal);
-            let lambda = -p.normal_mass * (vn + c.restitution * p.relative_velocity);
-            let new = (p.normal_impulse + lambda).max(0.0);
-            let dl = new - p.normal_impulse;
-            p.normal_impulse = new;
-            p.max_normal_impulse = p.max_normal_impulse.max(new);
-            apply(&mut a, &mut b, p.ra, p.rb, c.normal * dl, c.spin);
-        }
-        store(bodies, c.a, a);
-        store(bodies, c.b, b);
-    }
 }

@@ -4,6 +4,7 @@
 //! step and run the [`SolverStage`]s in order. Everything else keeps stage 2's free motion.
 
 mod contact;
+mod iterate;
 mod softness;
 
 use bevy::prelude::*;
@@ -14,9 +15,10 @@ use crate::step::integrate::{FreeStep, Inertial, free_substep, rotate};
 use crate::world::{PhysicsWorld, STATIC};
 
 pub use contact::{
-    ConstraintPoint, ContactConstraint, ContactParams, apply_restitution, contact_softness,
-    prepare_constraints, solve, warm_start,
+    AngularRow, ConstraintPoint, ContactConstraint, ContactParams, contact_softness,
+    prepare_constraints,
 };
+pub use iterate::{apply_restitution, solve, warm_start};
 pub use softness::Softness;
 
 /// The solver's stages in execution order. `PrepareContacts` runs once per step; the

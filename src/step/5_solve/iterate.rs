@@ -1,0 +1,196 @@
+//! The per-iteration contact passes: warm start, the Gauss–Seidel solve (soft or relaxed)
+//! and restitution. Each constraint loads its two bodies once and stores them once; each
+//! row uses the angular parts prepared in [`AngularRow`], and a body that cannot turn
+//! (static, or `LockRotation`) runs no angular terms at all.
+
+use bevy::prelude::*;
+
+use super::contact::{AngularRow, ContactConstraint, body, store};
+use crate::world::SolverBody;
+
+/// Velocity of b relative to a along the row's direction `d`.
+#[inline]
+pub fn row_velocity(
+    a: &SolverBody,
+    b: &SolverBody,
+    d: Vec3,
+    row: &AngularRow,
+    spin: [bool; 2],
+) -> f32 {
+    let mut v = d.dot(b.v - a.v);
+    if spin[0] {
+        v -= a.w.dot(row.ra);
+    }
+    if spin[1] {
+        v += b.w.dot(row.rb);
+    }
+    v
+}
+
+/// Linear impulse `p` on b and −p on a, with the angular parts `ang_a`, `ang_b`
+/// (inverse inertia times r × p, already scaled).
+#[inline]
+fn apply(a: &mut SolverBody, b: &mut SolverBody, p: Vec3, ang: [Vec3; 2], spin: [bool; 2]) {
+    a.v -= a.inv_mass * p;
+    b.v += b.inv_mass * p;
+    if spin[0] {
+        a.w -= ang[0];
+    }
+    if spin[1] {
+        b.w += ang[1];
+    }
+}
+
+/// A normal impulse `dl` at one point.
+#[inline]
+fn apply_normal(
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    n: Vec3,
+    row: &AngularRow,
+    dl: f32,
+    spin: [bool; 2],
+) {
+    apply(a, b, n * dl, [row.ia * dl, row.ib * dl], spin);
+}
+
+/// A friction impulse `d` (along tangent1, tangent2) at one point.
+#[inline]
+fn apply_tangent(
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    tangents: [Vec3; 2],
+    rows: &[AngularRow; 2],
+    d: Vec2,
+    spin: [bool; 2],
+) {
+    let p = tangents[0] * d.x + tangents[1] * d.y;
+    let ang = [
+        rows[0].ia * d.x + rows[1].ia * d.y,
+        rows[0].ib * d.x + rows[1].ib * d.y,
+    ];
+    apply(a, b, p, ang, spin);
+}
+
+/// Applies last step's accumulated impulses (already in the constraints).
+pub fn warm_start(bodies: &mut [SolverBody], constraints: &[ContactConstraint]) {
+    for c in constraints {
+        let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
+        for p in &c.points[..c.len] {
+            apply_normal(
+                &mut a,
+                &mut b,
+                c.normal,
+                &p.normal_row,
+                p.normal_impulse,
+                c.spin,
+            );
+            let tangents = [c.tangent1, c.tangent2];
+            apply_tangent(
+                &mut a,
+                &mut b,
+                tangents,
+                &p.tangent_rows,
+                p.tangent_impulse,
+                c.spin,
+            );
+        }
+        store(bodies, c.a, a);
+        store(bodies, c.b, b);
+    }
+}
+
+/// One Gauss–Seidel pass: for each manifold, the normal rows of all its points (soft with
+/// bias, or rigid when relaxing), then the friction disc of each point clamped to μ·λn
+/// with the updated normal impulses. Accumulated impulses are clamped, never increments.
+/// Speculative points (s > 0) may close their gap, not more. Impulses act at the
+/// start-of-step anchors; the separation follows the anchors as the bodies move and turn.
+pub fn solve(
+    bodies: &mut [SolverBody],
+    constraints: &mut [ContactConstraint],
+    h: f32,
+    max_push_out: f32,
+    use_bias: bool,
+) {
+    let inv_h = 1.0 / h;
+    for c in constraints.iter_mut() {
+        let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
+        let dp = b.dp - a.dp;
+        let spin = c.spin;
+        for p in c.points[..c.len].iter_mut() {
+            let ca = if c.turn_a { a.dq * p.ra } else { p.ra };
+            let cb = if c.turn_b { b.dq * p.rb } else { p.rb };
+            let s = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
+            let (bias, mass_scale, impulse_scale) = if s > 0.0 {
+                (s * inv_h, 1.0, 0.0)
+            } else if use_bias {
+                let soft = c.softness;
+                (
+                    (soft.bias_rate * s).max(-max_push_out),
+                    soft.mass_scale,
+                    soft.impulse_scale,
+                )
+            } else {
+                (0.0, 1.0, 0.0)
+            };
+            let vn = row_velocity(&a, &b, c.normal, &p.normal_row, spin);
+            let lambda =
+                -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
+            let new = (p.normal_impulse + lambda).max(0.0);
+            if p.normal_impulse == 0.0 && new > 0.0 {
+                // First push on this point: the approach speed that restitution reverses.
+                p.relative_velocity = p.relative_velocity.min(vn);
+            }
+            let dl = new - p.normal_impulse;
+            p.normal_impulse = new;
+            p.max_normal_impulse = p.max_normal_impulse.max(new);
+            apply_normal(&mut a, &mut b, c.normal, &p.normal_row, dl, spin);
+        }
+        // Friction, skipped for frictionless pairs (and when the effect is off).
+        if c.friction > 0.0 {
+            let tangents = [c.tangent1, c.tangent2];
+            for p in c.points[..c.len].iter_mut() {
+                // Both tangent rows from the same velocity, then clamp to the disc: a round
+                // cone.
+                let [r1, r2] = &p.tangent_rows;
+                let vt = Vec2::new(
+                    row_velocity(&a, &b, c.tangent1, r1, spin),
+                    row_velocity(&a, &b, c.tangent2, r2, spin),
+                );
+                let old = p.tangent_impulse;
+                let limit = c.friction * p.normal_impulse;
+                let new = (old - p.tangent_mass * vt).clamp_length_max(limit);
+                p.tangent_impulse = new;
+                apply_tangent(&mut a, &mut b, tangents, &p.tangent_rows, new - old, spin);
+            }
+        }
+        store(bodies, c.a, a);
+        store(bodies, c.b, b);
+    }
+}
+
+/// Restitution: points that were approaching faster than `threshold` and pushed get
+/// their normal velocity driven to −e times the approach speed.
+pub fn apply_restitution(
+    bodies: &mut [SolverBody],
+    constraints: &mut [ContactConstraint],
+    threshold: f32,
+) {
+    for c in constraints.iter_mut().filter(|c| c.restitution > 0.0) {
+        let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
+        for p in c.points[..c.len].iter_mut() {
+            if p.relative_velocity > -threshold || p.max_normal_impulse == 0.0 {
+                continue;
+            }
+            let vn = row_velocity(&a, &b, c.normal, &p.normal_row, c.spin);
+            let lambda = -p.normal_mass * (vn + c.restitution * p.relative_velocity);
+            let new = (p.normal_impulse + lambda).max(0.0);
+            let dl = new - p.normal_impulse;
+            p.normal_impulse = new;
+            p.max_normal_impulse = p.max_normal_impulse.max(new);
+            apply_normal(&mut a, &mut b, c.normal, &p.normal_row, dl, c.spin);
+        }
+        store(bodies, c.a, a);
+        store(bodies, c.b, b);
+    }
+}
