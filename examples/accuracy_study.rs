@@ -1,10 +1,14 @@
 //! What accuracy costs in time: runs the accuracy study (every scenario × integrator ×
 //! step rate 30…960 Hz × 1 or 4 substeps), writes `results.csv` and SVG plots into the
-//! folder given (default `docs/accuracy`), and prints the headline numbers.
+//! folder given (default `docs/accuracy`), and prints the headline numbers. Then the
+//! contact scenarios at 60 Hz over substeps × iterations: `iterations.csv` and a table.
 //!
 //! `cargo run --release --features study --example accuracy_study`
 
-use tumble::study::{RATES, fitted_order, sweep, to_csv, write_plots};
+use tumble::study::{
+    CONTACT_SCENARIOS, KNOB_VALUES, RATES, fitted_order, iteration_sweep, sweep, to_csv,
+    write_plots,
+};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let dir = std::path::PathBuf::from(
@@ -56,6 +60,23 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "fitted order, linear drag, {integrator:?}: {:.2}",
             fitted_order(&pts)
         );
+    }
+    let knobs = iteration_sweep(3);
+    std::fs::write(dir.join("iterations.csv"), to_csv(&knobs))?;
+    for scenario in CONTACT_SCENARIOS {
+        println!(
+            "\n{scenario} at 60 Hz, worst error · CPU s per simulated s\n\n| substeps \\ iterations | {} |\n|---|{}",
+            KNOB_VALUES.map(|i| i.to_string()).join(" | "),
+            "---|".repeat(KNOB_VALUES.len())
+        );
+        for substeps in KNOB_VALUES {
+            let cells: Vec<String> = knobs
+                .iter()
+                .filter(|r| r.scenario == scenario && r.config.substeps == substeps)
+                .map(|r| format!("{:.1e} · {:.1e}", r.measure.error_max, r.cost))
+                .collect();
+            println!("| {substeps} | {} |", cells.join(" | "));
+        }
     }
     Ok(())
 }

@@ -22,6 +22,8 @@ pub struct Config {
     pub integrator: Integrator,
     pub hz: f64,
     pub substeps: u32,
+    /// Solver passes per substep (at least; heavy loads add more, see `iterations_for`).
+    pub iterations: u32,
 }
 
 /// A result row.
@@ -51,7 +53,9 @@ pub fn headless_app(config: Config) -> App {
         sleeping: false,
         ..default()
     });
-    app.world_mut().resource_mut::<SolverSettings>().substeps = config.substeps;
+    let mut settings = app.world_mut().resource_mut::<SolverSettings>();
+    settings.substeps = config.substeps;
+    settings.iterations = config.iterations;
     app.update();
     app
 }
@@ -89,6 +93,7 @@ pub fn sweep(repeats: usize) -> Vec<Row> {
                             integrator,
                             hz,
                             substeps,
+                            iterations: 1,
                         },
                         repeats,
                     ));
@@ -98,6 +103,35 @@ pub fn sweep(repeats: usize) -> Vec<Row> {
     }
     rows
 }
+
+/// The contact scenarios stepped at 60 Hz with the semi-implicit integrator for every
+/// pair of substeps × iterations in {1, 2, 4, 8}: which knob buys accuracy cheaper.
+pub fn iteration_sweep(repeats: usize) -> Vec<Row> {
+    let mut rows = Vec::new();
+    for scenario in SCENARIOS
+        .iter()
+        .filter(|s| CONTACT_SCENARIOS.contains(&s.name))
+    {
+        for substeps in KNOB_VALUES {
+            for iterations in KNOB_VALUES {
+                let config = Config {
+                    integrator: Integrator::SemiImplicitEuler,
+                    hz: 60.0,
+                    substeps,
+                    iterations,
+                };
+                rows.push(run(scenario, config, repeats));
+            }
+        }
+    }
+    rows
+}
+
+/// The scenarios whose error comes from contacts.
+pub const CONTACT_SCENARIOS: [&str; 2] = ["box_stack", "bouncing_ball"];
+
+/// The substep and iteration counts the iteration sweep tries.
+pub const KNOB_VALUES: [u32; 4] = [1, 2, 4, 8];
 
 /// Errors below this (m/s, on speeds of ~8 m/s) are f32 rounding, not truncation.
 pub const ROUNDING_FLOOR: f64 = 1e-5;
@@ -123,15 +157,16 @@ pub fn fitted_order(points: &[(f64, f64)]) -> f64 {
 /// The rows as CSV.
 pub fn to_csv(rows: &[Row]) -> String {
     let mut out = String::from(
-        "scenario,integrator,hz,substeps,error_final,error_max,energy_drift,cpu_s_per_sim_s\n",
+        "scenario,integrator,hz,substeps,iterations,error_final,error_max,energy_drift,cpu_s_per_sim_s\n",
     );
     for r in rows {
         out += &format!(
-            "{},{:?},{},{},{:.6e},{:.6e},{:.6e},{:.6e}\n",
+            "{},{:?},{},{},{},{:.6e},{:.6e},{:.6e},{:.6e}\n",
             r.scenario,
             r.config.integrator,
             r.config.hz,
             r.config.substeps,
+            r.config.iterations,
             r.measure.error_final,
             r.measure.error_max,
             r.measure.energy_drift,

@@ -180,6 +180,7 @@ fn energy_over_time(path: &Path) -> Res {
                     integrator: i,
                     hz: 60.0,
                     substeps: 1,
+                    iterations: 1,
                 }),
             )
         })

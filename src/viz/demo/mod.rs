@@ -9,6 +9,7 @@ mod stats;
 mod tour;
 
 use bevy::diagnostic::{Diagnostic, DiagnosticPath, Diagnostics, RegisterDiagnostic};
+use bevy::ecs::schedule::SingleThreadedExecutor;
 use bevy::picking::mesh_picking::MeshPickingPlugin;
 use bevy::prelude::*;
 use bevy_egui::{EguiPlugin, EguiPrimaryContextPass};
@@ -43,6 +44,12 @@ impl Plugin for DemoPlugin {
         .init_asset::<crate::scene::SceneDesc>()
         .init_asset_loader::<crate::scene::SceneLoader>()
         .add_plugins((scenes::plugin, keys::plugin, stats::plugin))
+        // The physics stages are a chain anyway; run FixedUpdate on the main thread so the
+        // panel's stage timings measure the stages, not hand-offs between worker threads
+        // (under a software renderer those waits were most of the "step" time).
+        .edit_schedule(FixedUpdate, |s| {
+            s.set_executor(SingleThreadedExecutor::new());
+        })
         .add_systems(Startup, setup_view)
         .add_systems(FixedPostUpdate, record_timings)
         .add_systems(EguiPrimaryContextPass, panel::draw_panel);
