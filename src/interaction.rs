@@ -6,7 +6,7 @@ use bevy::input::keyboard::KeyCode;
 use bevy::prelude::*;
 
 use crate::PhysicsSystems;
-use crate::body::{ExternalForce, Mass, RigidBody, Velocity};
+use crate::body::{ExternalForce, Mass, RigidBody, SleepTimer, Velocity};
 use crate::collider::Collider;
 use crate::scene::{SceneDesc, SceneEntity};
 
@@ -54,7 +54,10 @@ pub fn pull_dragged(
         let v_anchor = v.linear + v.angular.cross(r);
         let force = m * (omega * omega * (d.target - anchor) - 2.0 * omega * v_anchor);
         let torque = r.cross(force) - m * (r.length_squared() + 0.1) * 0.5 * omega * v.angular;
-        commands.entity(e).insert(ExternalForce { force, torque });
+        // A held body is being moved by hand: it must not fall asleep in the air.
+        commands
+            .entity(e)
+            .insert((ExternalForce { force, torque }, SleepTimer(0.0)));
     }
 }
 

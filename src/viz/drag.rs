@@ -16,7 +16,8 @@ impl Plugin for DragBodiesPlugin {
     fn build(&self, app: &mut App) {
         app.add_observer(grab_body)
             .add_observer(move_target)
-            .add_observer(release_body)
+            .add_observer(release_on_drag_end)
+            .add_observer(release_on_release)
             .add_plugins(DragPullPlugin);
     }
 }
@@ -83,17 +84,38 @@ fn move_target(
     }
 }
 
-fn release_body(
-    ev: On<Pointer<Release>>,
-    mut commands: Commands,
-    mut forces: Query<&mut ExternalForce, With<Dragged>>,
-    all_dragged: Query<Entity, With<Dragged>>,
-    mut orbit: Query<&mut PanOrbitCamera>,
-) {
-    if ev.button != PointerButton::Primary {
-        return;
+/// The end of a drag is reported to the dragged body wherever the pointer is released
+/// (`Release` only reaches an entity under the pointer, and after a fast drag that is often
+/// none: the body stayed held, seen in a real window).
+fn release_on_drag_end(ev: On<Pointer<DragEnd>>, release: ReleaseParams) {
+    if ev.button == PointerButton::Primary {
+        release_held(release);
     }
-    // The pointer may be released over another entity: let go of whatever is held.
+}
+
+/// A press and release without a drag.
+fn release_on_release(ev: On<Pointer<Release>>, release: ReleaseParams) {
+    if ev.button == PointerButton::Primary {
+        release_held(release);
+    }
+}
+
+#[derive(bevy::ecs::system::SystemParam)]
+struct ReleaseParams<'w, 's> {
+    commands: Commands<'w, 's>,
+    forces: Query<'w, 's, &'static mut ExternalForce, With<Dragged>>,
+    all_dragged: Query<'w, 's, Entity, With<Dragged>>,
+    orbit: Query<'w, 's, &'static mut PanOrbitCamera>,
+}
+
+/// Lets go of whatever is held: the force goes back to zero and the camera orbits again.
+fn release_held(p: ReleaseParams) {
+    let ReleaseParams {
+        mut commands,
+        mut forces,
+        all_dragged,
+        mut orbit,
+    } = p;
     for e in &all_dragged {
         commands.entity(e).remove::<Dragged>();
         if let Ok(mut f) = forces.get_mut(e) {

@@ -111,8 +111,13 @@ pub fn sync_fixed_set(
             }
             continue;
         };
+        let was_asleep = world.fixed.get(entity).is_some_and(|c| c.asleep);
         if wake && item.sleeping {
             commands.entity(entity).remove::<Sleeping>();
+        }
+        if (wake && item.sleeping) || (was_asleep && !item.sleeping) {
+            // Woken: it must be still for the whole time to sleep again.
+            commands.entity(entity).insert(SleepTimer(0.0));
         }
         let is_static = item.kind.is_none_or(|k| *k == RigidBody::Static);
         let belongs = !item.rejected
