@@ -41,10 +41,15 @@ xdotool key --window "$win" 2
 sleep 30 # the tower settles and falls asleep
 import -window root "$out/before.png"
 # The top box of the tower is at about (640, 80) in the 1280×720 window.
-xdotool mousemove --sync 640 80 mousedown 1
+# Frames are slow under the software renderer: hover first so picking sees the box, then
+# press, then move in small steps so every step is a frame or more.
+xdotool mousemove --sync 640 80
+sleep 3
+xdotool mousedown 1
+sleep 2
 for x in $(seq 660 20 900); do
   xdotool mousemove --sync "$x" 80
-  sleep 0.3
+  sleep 0.5
 done
 sleep 8
 import -window root "$out/during.png"

@@ -38,22 +38,43 @@ impl Plugin for DragPullPlugin {
     }
 }
 
-/// The pull, a critically damped spring at the grabbed point:
-/// F = m·(ω²·(target − anchor) − 2ω·v_anchor), plus a damping torque
-/// −m·(|r|² + 0.1 m²)·(ω/2)·Ω on the body's spin Ω, so a held body hangs still instead of
-/// swinging about the grabbed point for ever. Written into `ExternalForce`; the body keeps colliding meanwhile.
+/// The pull, a critically damped spring at the grabbed point acting through the point's
+/// effective mass M (the 3×3 mass the point shows when pushed, rotation included):
+/// F = M·(ω²·(target − anchor) − 2ω·v_anchor), so the grabbed point moves like a unit
+/// oscillator of frequency ω wherever the body is held, plus a damping torque −(ω/2)·I·Ω
+/// so a held body hangs still instead of swinging about the grabbed point for ever.
+/// Written into `ExternalForce`; the body keeps colliding meanwhile.
+///
+/// With the body's plain mass instead of M, a light box held by a corner was unstable at
+/// 60 Hz (its rotation answers the off-centre force several times faster than ω) and
+/// flung the tower apart in the demo; see `tests/drag_corner_grab.rs`.
 pub fn pull_dragged(
     mut commands: Commands,
-    q: Query<(Entity, &Transform, &Velocity, Option<&Mass>, &Dragged)>,
+    q: Query<(
+        Entity,
+        &Transform,
+        &Velocity,
+        Option<&Mass>,
+        Option<&Collider>,
+        &Dragged,
+    )>,
 ) {
     let omega = std::f32::consts::TAU * PULL_HERTZ;
-    for (e, tf, v, mass, d) in &q {
+    for (e, tf, v, mass, collider, d) in &q {
         let m = mass.map_or(1.0, |m| m.0);
+        let shape = collider.map_or(Collider::sphere(0.5).shape, |c| c.shape);
+        let rot = Mat3::from_quat(tf.rotation);
+        let inertia = shape.principal_inertia(m);
+        let inv_i = rot * Mat3::from_diagonal(inertia.recip()) * rot.transpose();
+        let i_world = rot * Mat3::from_diagonal(inertia) * rot.transpose();
         let anchor = tf.transform_point(d.local_anchor);
         let r = anchor - tf.translation;
+        // K·x = x/m + (I⁻¹(r × x)) × r: the anchor's acceleration per unit force.
+        let k = |x: Vec3| x / m + (inv_i * r.cross(x)).cross(r);
+        let point_mass = Mat3::from_cols(k(Vec3::X), k(Vec3::Y), k(Vec3::Z)).inverse();
         let v_anchor = v.linear + v.angular.cross(r);
-        let force = m * (omega * omega * (d.target - anchor) - 2.0 * omega * v_anchor);
-        let torque = r.cross(force) - m * (r.length_squared() + 0.1) * 0.5 * omega * v.angular;
+        let force = point_mass * (omega * omega * (d.target - anchor) - 2.0 * omega * v_anchor);
+        let torque = r.cross(force) - 0.5 * omega * (i_world * v.angular);
         // A held body is being moved by hand: it must not fall asleep in the air.
         commands
             .entity(e)
