@@ -38,6 +38,9 @@ impl Plugin for DragPullPlugin {
     }
 }
 
+/// What the pull needs to know of a held body's mass distribution.
+type HeldBody = (Option<&'static Mass>, Option<&'static Collider>);
+
 /// The pull, a critically damped spring at the grabbed point acting through the point's
 /// effective mass M (the 3×3 mass the point shows when pushed, rotation included):
 /// F = M·(ω²·(target − anchor) − 2ω·v_anchor), so the grabbed point moves like a unit
@@ -50,17 +53,10 @@ impl Plugin for DragPullPlugin {
 /// flung the tower apart in the demo; see `tests/drag_corner_grab.rs`.
 pub fn pull_dragged(
     mut commands: Commands,
-    q: Query<(
-        Entity,
-        &Transform,
-        &Velocity,
-        Option<&Mass>,
-        Option<&Collider>,
-        &Dragged,
-    )>,
+    q: Query<(Entity, &Transform, &Velocity, HeldBody, &Dragged)>,
 ) {
     let omega = std::f32::consts::TAU * PULL_HERTZ;
-    for (e, tf, v, mass, collider, d) in &q {
+    for (e, tf, v, (mass, collider), d) in &q {
         let m = mass.map_or(1.0, |m| m.0);
         let shape = collider.map_or(Collider::sphere(0.5).shape, |c| c.shape);
         let rot = Mat3::from_quat(tf.rotation);

@@ -9,7 +9,6 @@ mod common;
 use bevy::prelude::*;
 use common::*;
 use tumble::interaction::{DragPullPlugin, Dragged, PULL_HERTZ};
-use tumble::prelude::*;
 
 #[test]
 fn a_light_box_held_by_its_corner_settles_under_the_cursor() {
