@@ -15,6 +15,7 @@
 //! - RK4: the four-stage free motion plus h·Δv. Fourth order away from contacts, first order
 //!   across a contact event (an impulse is a discontinuity).
 
+mod ballistic;
 mod explicit_euler;
 mod gyroscopic;
 mod rk4;
@@ -26,6 +27,7 @@ use crate::body::RigidBody;
 use crate::settings::{Integrator, SolverSettings};
 use crate::world::{BodyState, ForceModel, PhysicsWorld};
 
+pub use ballistic::ballistic;
 pub use gyroscopic::solve_gyroscopic_midpoint;
 
 /// One substep of free motion.
@@ -133,6 +135,16 @@ pub fn integrate_free_motion(
     let n = settings.substeps.max(1);
     let h = world.dt / n as f32;
     for (body, sb) in world.bodies.iter().zip(world.solver_bodies.iter_mut()) {
+        let f = &body.forces;
+        let still = body.rotation_locked || (body.w0 == Vec3::ZERO && f.torque == Vec3::ZERO);
+        if body.is_dynamic() && still && f.linear_damping == 0.0 {
+            let (dp, v) = ballistic(*integrator, body.v0, f.accel, h, n);
+            sb.dp = dp;
+            sb.dq = Quat::IDENTITY;
+            sb.v = v.clamp_length_max(settings.max_linear_speed);
+            sb.w = Vec3::ZERO;
+            continue;
+        }
         let (mut dp, mut q, mut v, mut w) = (Vec3::ZERO, body.q0, body.v0, body.w0);
         for _ in 0..n {
             let fs = free_substep(*integrator, body.kind, Inertial::of(body), q, v, w, h);
