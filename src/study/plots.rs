@@ -4,6 +4,8 @@
 
 use std::path::Path;
 
+use plotters::coord::Shift;
+use plotters::coord::combinators::LogCoord;
 use plotters::prelude::*;
 
 use super::scenarios::spinning_energy_series;
@@ -31,6 +33,33 @@ fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
     }
 }
 
+/// A log-log chart in the study's style, axes drawn.
+type LogLog<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>;
+
+fn log_log_chart<'a, 'b>(
+    root: &'a DrawingArea<SVGBackend<'b>, Shift>,
+    caption: &str,
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+    (x_desc, y_desc): (&str, &str),
+) -> Result<LogLog<'a, 'b>, Box<dyn std::error::Error>> {
+    let mut chart = ChartBuilder::on(root)
+        .caption(caption, ("sans-serif", 20))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(70)
+        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
+    chart
+        .configure_mesh()
+        .light_line_style(RGBColor(236, 236, 236))
+        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .x_label_formatter(&|v| format!("{v:.0e}"))
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .draw()?;
+    Ok(chart)
+}
+
 /// Writes every plot into `dir`.
 pub fn write_plots(rows: &[Row], dir: &Path) -> Res {
     for s in SCENARIOS {
@@ -49,23 +78,9 @@ fn work_precision(rows: &[&Row], unit: &str, path: &Path) -> Res {
     let (x0, x1) = bounds(rows.iter().map(|r| r.cost));
     let (y0, y1) = bounds(rows.iter().map(|r| r.measure.error_max));
     let name = rows.first().map_or("", |r| r.scenario);
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            format!("{name}: error against CPU time"),
-            ("sans-serif", 20),
-        )
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(70)
-        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
-    chart
-        .configure_mesh()
-        .light_line_style(RGBColor(236, 236, 236))
-        .y_label_formatter(&|v| format!("{v:.0e}"))
-        .x_label_formatter(&|v| format!("{v:.0e}"))
-        .x_desc("CPU s per simulated s")
-        .y_desc(unit)
-        .draw()?;
+    let caption = format!("{name}: error against CPU time");
+    let desc = ("CPU s per simulated s", unit);
+    let mut chart = log_log_chart(&root, &caption, (x0, x1), (y0, y1), desc)?;
     for integrator in Integrator::ALL {
         for substeps in [1, 4] {
             let mut pts: Vec<(f64, f64)> = rows
@@ -115,23 +130,9 @@ fn convergence(rows: &[Row], path: &Path) -> Res {
     let all: Vec<(f64, f64)> = Integrator::ALL.iter().flat_map(|&i| pick(i)).collect();
     let (x0, x1) = bounds(all.iter().map(|p| p.0));
     let (y0, y1) = bounds(all.iter().map(|p| p.1));
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            "Convergence in free flight (stiff linear drag, 1 substep)",
-            ("sans-serif", 20),
-        )
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(70)
-        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
-    chart
-        .configure_mesh()
-        .light_line_style(RGBColor(236, 236, 236))
-        .y_label_formatter(&|v| format!("{v:.0e}"))
-        .x_label_formatter(&|v| format!("{v:.0e}"))
-        .x_desc("h (s)")
-        .y_desc("largest velocity error over 0.5 s (m/s)")
-        .draw()?;
+    let caption = "Convergence in free flight (stiff linear drag, 1 substep)";
+    let desc = ("h (s)", "largest velocity error over 0.5 s (m/s)");
+    let mut chart = log_log_chart(&root, caption, (x0, x1), (y0, y1), desc)?;
     for integrator in Integrator::ALL {
         let pts = pick(integrator);
         let order = fitted_order(&pts);
@@ -239,23 +240,12 @@ fn separatrix(rows: &[Row], path: &Path) -> Res {
         .collect();
     let (x0, x1) = bounds(pts.iter().map(|p| p.1));
     let (y0, y1) = bounds(pts.iter().map(|p| p.2));
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            "Box near the separatrix: period error against energy drift",
-            ("sans-serif", 20),
-        )
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(70)
-        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
-    chart
-        .configure_mesh()
-        .light_line_style(RGBColor(236, 236, 236))
-        .y_label_formatter(&|v| format!("{v:.0e}"))
-        .x_label_formatter(&|v| format!("{v:.0e}"))
-        .x_desc("|energy drift| over 10 s (relative)")
-        .y_desc("period error (relative)")
-        .draw()?;
+    let caption = "Box near the separatrix: period error against energy drift";
+    let desc = (
+        "|energy drift| over 10 s (relative)",
+        "period error (relative)",
+    );
+    let mut chart = log_log_chart(&root, caption, (x0, x1), (y0, y1), desc)?;
     for integrator in Integrator::ALL {
         let c = color(integrator);
         chart
