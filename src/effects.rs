@@ -32,17 +32,11 @@ pub struct Effects {
 }
 
 impl Default for Effects {
+    /// Everything but wind (a scene has to ask for a wind field).
     fn default() -> Self {
         Self {
-            gravity: true,
-            damping: true,
             wind: false,
-            global_force: true,
-            friction: true,
-            restitution: true,
-            rotation: true,
-            collisions: true,
-            sleeping: true,
+            ..Self::ALL
         }
     }
 }
