@@ -1,10 +1,12 @@
 //! Sweep-and-prune finds exactly the pairs the brute-force reference finds, on 50 random
-//! scenes of 500 colliders (spheres, boxes, bounded and infinite planes, some static).
+//! scenes of 500 colliders (spheres, boxes, bounded and infinite planes, some static); and
+//! the fixed set, after random inserts, moves and removals, finds exactly what testing
+//! every entry finds.
 
 use bevy::prelude::*;
 use proptest::prelude::*;
 use tumble::collider::Shape;
-use tumble::step::broad_phase::{SweepAndPrune, brute_force_pairs};
+use tumble::step::broad_phase::{FixedSet, SweepAndPrune, brute_force_pairs};
 use tumble::world::{ColliderEntry, STATIC};
 
 fn scene(seed: u64) -> Vec<ColliderEntry> {
@@ -75,5 +77,39 @@ proptest! {
         sap.pairs(&moved, &mut fast);
         prop_assert!(!reference.is_empty());
         prop_assert_eq!(reference, fast);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(50))]
+    #[test]
+    fn fixed_set_matches_brute_force_after_inserts_moves_and_removals(seed in any::<u64>()) {
+        let colliders = scene(seed);
+        let entity = |k: usize| Entity::from_raw_u32(k as u32 + 1).unwrap();
+        let mut set = FixedSet::default();
+        // Insert all 500, then move every third (re-insert at a new place) and remove
+        // every fifth: swap-removal must keep every other entry findable.
+        for (k, c) in colliders.iter().enumerate() {
+            set.insert(ColliderEntry { entity: entity(k), ..*c });
+        }
+        for (k, c) in colliders.iter().enumerate().step_by(3) {
+            let pos = c.pos + Vec3::new(5.0, -3.0, 2.0);
+            set.insert(ColliderEntry { entity: entity(k), pos, ..*c });
+        }
+        for k in (0..colliders.len()).step_by(5) {
+            prop_assert!(set.remove(entity(k)));
+        }
+        prop_assert_eq!(set.len(), 400);
+        for k in 0..colliders.len() {
+            prop_assert_eq!(set.contains(entity(k)), k % 5 != 0);
+        }
+        set.update_search();
+        for q in colliders.iter().take(100) {
+            let (lo, hi) = (q.aabb_min, q.aabb_max + Vec3::splat(0.5));
+            let mut fast = Vec::new();
+            set.overlapping(lo, hi, 0.02, |i| fast.push(i));
+            fast.sort_unstable();
+            prop_assert_eq!(fast, set.overlapping_brute_force(lo, hi, 0.02));
+        }
     }
 }
