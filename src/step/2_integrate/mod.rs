@@ -85,11 +85,7 @@ pub fn free_substep(
         };
     }
     let f = body.forces;
-    let (dx, v) = match integrator {
-        Integrator::ExplicitEuler => explicit_euler::linear(f, v, h),
-        Integrator::SemiImplicitEuler => semi_implicit::linear(f, v, h),
-        Integrator::Rk4 => rk4::linear(f, v, h),
-    };
+    let (dx, v) = linear_substep(integrator, f, v, h);
     // Locked, or not turning and no torque: the angular state stays exactly as it is
     // for every integrator (α = 0), so none of the angular math runs.
     let (q, w) = if body.rotation_locked || (w == Vec3::ZERO && f.torque == Vec3::ZERO) {
@@ -102,6 +98,16 @@ pub fn free_substep(
         }
     };
     FreeStep { dx, q, v, w }
+}
+
+/// One substep of the linear motion alone: position increment and end velocity.
+#[inline]
+pub fn linear_substep(integrator: Integrator, f: &ForceModel, v: Vec3, h: f32) -> (Vec3, Vec3) {
+    match integrator {
+        Integrator::ExplicitEuler => explicit_euler::linear(f, v, h),
+        Integrator::SemiImplicitEuler => semi_implicit::linear(f, v, h),
+        Integrator::Rk4 => rk4::linear(f, v, h),
+    }
 }
 
 /// q + h·½(0, ω)⊗q, renormalised: the first-order quaternion update.
@@ -137,8 +143,17 @@ pub fn integrate_free_motion(
     for (body, sb) in world.bodies.iter().zip(world.solver_bodies.iter_mut()) {
         let f = &body.forces;
         let still = body.rotation_locked || (body.w0 == Vec3::ZERO && f.torque == Vec3::ZERO);
-        if body.is_dynamic() && still && f.linear_damping == 0.0 {
-            let (dp, v) = ballistic(*integrator, body.v0, f.accel, h, n);
+        if body.is_dynamic() && still {
+            // Not turning: constant acceleration has a closed form; with drag, only the
+            // linear substeps run.
+            let (dp, v) = if f.linear_damping == 0.0 {
+                ballistic(*integrator, body.v0, f.accel, h, n)
+            } else {
+                (0..n).fold((Vec3::ZERO, body.v0), |(dp, v), _| {
+                    let (dx, v) = linear_substep(*integrator, f, v, h);
+                    (dp + dx, v)
+                })
+            };
             sb.dp = dp;
             sb.dq = Quat::IDENTITY;
             sb.v = v.clamp_length_max(settings.max_linear_speed);
