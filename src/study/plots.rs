@@ -33,6 +33,27 @@ fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
     }
 }
 
+/// A white 720 × 480 SVG canvas at `path`.
+fn canvas(path: &Path) -> Result<DrawingArea<SVGBackend<'_>, Shift>, Box<dyn std::error::Error>> {
+    let root = SVGBackend::new(path, (720, 480)).into_drawing_area();
+    root.fill(&WHITE)?;
+    Ok(root)
+}
+
+/// Draws the legend and writes the file.
+fn finish<'a, 'b, X: Ranged, Y: Ranged>(
+    chart: &mut ChartContext<'a, SVGBackend<'b>, Cartesian2d<X, Y>>,
+    root: &'a DrawingArea<SVGBackend<'b>, Shift>,
+) -> Res {
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}
+
 /// A log-log chart in the study's style, axes drawn.
 type LogLog<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>;
 
@@ -73,8 +94,7 @@ pub fn write_plots(rows: &[Row], dir: &Path) -> Res {
 }
 
 fn work_precision(rows: &[&Row], unit: &str, path: &Path) -> Res {
-    let root = SVGBackend::new(path, (720, 480)).into_drawing_area();
-    root.fill(&WHITE)?;
+    let root = canvas(path)?;
     let (x0, x1) = bounds(rows.iter().map(|r| r.cost));
     let (y0, y1) = bounds(rows.iter().map(|r| r.measure.error_max));
     let name = rows.first().map_or("", |r| r.scenario);
@@ -106,18 +126,11 @@ fn work_precision(rows: &[&Row], unit: &str, path: &Path) -> Res {
             chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
         }
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()?;
-    root.present()?;
-    Ok(())
+    finish(&mut chart, &root)
 }
 
 fn convergence(rows: &[Row], path: &Path) -> Res {
-    let root = SVGBackend::new(path, (720, 480)).into_drawing_area();
-    root.fill(&WHITE)?;
+    let root = canvas(path)?;
     let pick = |i: Integrator| -> Vec<(f64, f64)> {
         rows.iter()
             .filter(|r| {
@@ -160,18 +173,11 @@ fn convergence(rows: &[Row], path: &Path) -> Res {
                 .legend(|(x, y)| PathElement::new([(x, y), (x + 16, y)], BLACK.mix(0.4)));
         }
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()?;
-    root.present()?;
-    Ok(())
+    finish(&mut chart, &root)
 }
 
 fn energy_over_time(path: &Path) -> Res {
-    let root = SVGBackend::new(path, (720, 480)).into_drawing_area();
-    root.fill(&WHITE)?;
+    let root = canvas(path)?;
     let series: Vec<(Integrator, Vec<(f64, f64)>)> = Integrator::ALL
         .iter()
         .map(|&i| {
@@ -214,18 +220,11 @@ fn energy_over_time(path: &Path) -> Res {
             .label(format!("{integrator:?}"))
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], c.stroke_width(2)));
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()?;
-    root.present()?;
-    Ok(())
+    finish(&mut chart, &root)
 }
 
 fn separatrix(rows: &[Row], path: &Path) -> Res {
-    let root = SVGBackend::new(path, (720, 480)).into_drawing_area();
-    root.fill(&WHITE)?;
+    let root = canvas(path)?;
     let pts: Vec<(Integrator, f64, f64)> = rows
         .iter()
         .filter(|r| r.scenario == "separatrix_box")
@@ -257,11 +256,5 @@ fn separatrix(rows: &[Row], path: &Path) -> Res {
             .label(format!("{integrator:?}"))
             .legend(move |(x, y)| Circle::new((x + 8, y), 4, c.filled()));
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()?;
-    root.present()?;
-    Ok(())
+    finish(&mut chart, &root)
 }
