@@ -31,6 +31,8 @@ pub struct FixedSet {
     widest: f32,
     /// Entries changed since `sorted` and `wide` were built.
     dirty: bool,
+    /// Scratch for the median width, kept so a rebuild does not allocate.
+    widths: Vec<f32>,
 }
 
 impl FixedSet {
@@ -89,9 +91,14 @@ impl FixedSet {
         }
         self.dirty = false;
         let width = |c: &ColliderEntry| c.aabb_max.x - c.aabb_min.x;
-        let mut widths: Vec<f32> = self.entries.iter().map(width).collect();
-        widths.sort_by(f32::total_cmp);
-        let median = widths.get(widths.len() / 2).copied().unwrap_or(0.0);
+        self.widths.clear();
+        self.widths.extend(self.entries.iter().map(width));
+        let mid = self.widths.len() / 2;
+        let median = if self.widths.is_empty() {
+            0.0
+        } else {
+            *self.widths.select_nth_unstable_by(mid, f32::total_cmp).1
+        };
         let limit = WIDE_FACTOR * median;
         self.sorted.clear();
         self.wide.clear();
