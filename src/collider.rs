@@ -74,9 +74,10 @@ impl Shape {
         }
     }
 
-    /// Checks sizes: every size must be finite and > 0. Returns the reason otherwise.
+    /// Checks sizes: every size must be finite, > 0 and at most
+    /// [`MAX_SIZE`](crate::limits::MAX_SIZE). Returns the reason otherwise.
     pub fn validate(&self) -> Result<(), String> {
-        let ok = |v: f32| v.is_finite() && v > 0.0;
+        let ok = |v: f32| v.is_finite() && v > 0.0 && v <= crate::limits::MAX_SIZE;
         match *self {
             Shape::Sphere { radius } if !ok(radius) => Err(format!("sphere radius {radius}")),
             Shape::Cuboid { half_extents: h } if !(ok(h.x) && ok(h.y) && ok(h.z)) => {

@@ -130,3 +130,24 @@ pub struct GravityScale(pub f32);
 #[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[reflect(Component)]
 pub struct LockRotation;
+
+impl Wind {
+    /// Velocity within ±[`MAX_SPEED`](crate::limits::MAX_SPEED), drag and gust rate
+    /// finite and ≥ 0, gust fraction within 0..=10.
+    pub fn check(&self) -> Result<(), crate::limits::Invalid> {
+        use crate::limits::{MAX_RATE, MAX_SPEED, scalar, vector};
+        vector("velocity", self.velocity, MAX_SPEED)?;
+        scalar("drag", self.drag, 0.0..=MAX_RATE)?;
+        scalar("gust", self.gust, 0.0..=10.0)?;
+        scalar("gust_hz", self.gust_hz, 0.0..=MAX_RATE)?;
+        Ok(())
+    }
+}
+
+impl GravityScale {
+    /// Finite, within ±[`MAX_COEFFICIENT`](crate::limits::MAX_COEFFICIENT).
+    pub fn check(&self) -> Result<(), crate::limits::Invalid> {
+        let max = crate::limits::MAX_COEFFICIENT;
+        crate::limits::scalar("GravityScale", self.0, -max..=max)
+    }
+}

@@ -20,6 +20,7 @@ pub mod collider;
 pub mod effects;
 pub mod events;
 pub mod interaction;
+pub mod limits;
 pub mod plugin;
 pub mod scene;
 pub mod settings;

@@ -48,7 +48,11 @@ impl Default for TumblePlugin {
 
 impl Plugin for TumblePlugin {
     fn build(&self, app: &mut App) {
-        app.insert_resource(Time::<Fixed>::from_hz(self.hz))
+        let (hz, why) = crate::limits::clamp_rate(self.hz);
+        if let Some(why) = why {
+            error!("tumble: TumblePlugin.hz: {why}");
+        }
+        app.insert_resource(Time::<Fixed>::from_hz(hz))
             .init_resource::<Gravity>()
             .init_resource::<Integrator>()
             .init_resource::<SolverSettings>()
@@ -58,6 +62,8 @@ impl Plugin for TumblePlugin {
             .init_resource::<GlobalForce>()
             .init_resource::<StepTimings>()
             .init_resource::<crate::PhysicsWorld>()
+            .init_resource::<prepare::PendingRechecks>()
+            .add_observer(prepare::record_removal)
             .add_message::<events::CollisionStarted>()
             .add_message::<events::CollisionEnded>();
         app.register_type::<RigidBody>()
@@ -95,11 +101,21 @@ impl Plugin for TumblePlugin {
             )
                 .chain(),
         );
+        app.add_systems(
+            RunFixedMainLoop,
+            prepare::guard_fixed_rate.in_set(RunFixedMainLoopSystems::BeforeFixedMainLoop),
+        );
         let collisions = effect(|e| e.collisions);
         app.add_systems(
             FixedUpdate,
             (
-                (stamp::<0>, prepare::sync_fixed_set, prepare::prepare_bodies)
+                (
+                    stamp::<0>,
+                    prepare::validate_settings,
+                    prepare::readmit_rejected,
+                    prepare::sync_fixed_set,
+                    prepare::prepare_bodies,
+                )
                     .chain()
                     .in_set(S::Prepare),
                 (

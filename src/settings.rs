@@ -118,3 +118,70 @@ impl Default for SleepSettings {
         }
     }
 }
+
+use crate::limits::{self, Invalid};
+
+impl Gravity {
+    /// Finite, each component within ±[`MAX_ACCELERATION`](limits::MAX_ACCELERATION).
+    pub fn check(&self) -> Result<(), Invalid> {
+        limits::vector("0", self.0, limits::MAX_ACCELERATION)
+    }
+}
+
+impl GlobalForce {
+    /// Finite, each component within ±[`MAX_FORCE`](limits::MAX_FORCE).
+    pub fn check(&self) -> Result<(), Invalid> {
+        limits::vector("0", self.0, limits::MAX_FORCE)
+    }
+}
+
+impl SolverSettings {
+    /// Every float field finite and in range. `substeps` and `iterations` are not
+    /// refused but clamped ([`clamp_counts`](Self::clamp_counts)).
+    pub fn check(&self) -> Result<(), Invalid> {
+        use limits::{MAX_COEFFICIENT, MAX_RATE, MAX_SIZE, MAX_SPEED, positive, scalar};
+        positive("contact_hertz", self.contact_hertz, MAX_RATE)?;
+        scalar(
+            "contact_damping_ratio",
+            self.contact_damping_ratio,
+            0.0..=MAX_COEFFICIENT,
+        )?;
+        positive("max_push_out", self.max_push_out, MAX_SPEED)?;
+        scalar(
+            "restitution_threshold",
+            self.restitution_threshold,
+            0.0..=MAX_SPEED,
+        )?;
+        scalar(
+            "speculative_margin",
+            self.speculative_margin,
+            0.0..=MAX_SIZE,
+        )?;
+        positive("max_linear_speed", self.max_linear_speed, MAX_SPEED)?;
+        Ok(())
+    }
+
+    /// `substeps` and `iterations` clamped into 1..=64. Returns what was clamped.
+    pub fn clamp_counts(&mut self) -> Option<String> {
+        let (s, i) = (self.substeps, self.iterations);
+        self.substeps = s.clamp(*limits::SUBSTEPS.start(), *limits::SUBSTEPS.end());
+        self.iterations = i.clamp(*limits::ITERATIONS.start(), *limits::ITERATIONS.end());
+        ((s, i) != (self.substeps, self.iterations)).then(|| {
+            format!(
+                "substeps {s} → {}, iterations {i} → {} (each must be within 1..=64)",
+                self.substeps, self.iterations
+            )
+        })
+    }
+}
+
+impl SleepSettings {
+    /// Thresholds and time finite and ≥ 0.
+    pub fn check(&self) -> Result<(), Invalid> {
+        use limits::{MAX_RATE, MAX_SPEED, scalar};
+        scalar("linear_threshold", self.linear_threshold, 0.0..=MAX_SPEED)?;
+        scalar("angular_threshold", self.angular_threshold, 0.0..=MAX_RATE)?;
+        scalar("time_to_sleep", self.time_to_sleep, 0.0..=1.0e9)?;
+        Ok(())
+    }
+}

@@ -9,6 +9,8 @@ use crate::collider::Collider;
 use crate::effects::{Effects, Wind};
 use crate::settings::Integrator;
 
+use super::check;
+
 /// One scene file.
 #[derive(TypePath, Serialize, Deserialize, Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "viz", derive(bevy::asset::Asset))]
@@ -32,15 +34,22 @@ pub struct SceneDesc {
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
 #[serde(default, deny_unknown_fields)]
 pub struct SceneSettings {
+    #[serde(deserialize_with = "check::gravity")]
     pub gravity: Vec3,
     pub integrator: Integrator,
-    /// Fixed steps per second.
+    /// Fixed steps per second, 1..=10000.
+    #[serde(deserialize_with = "check::hz")]
     pub hz: f64,
+    /// 1..=64.
+    #[serde(deserialize_with = "check::count")]
     pub substeps: u32,
+    /// 1..=64.
+    #[serde(deserialize_with = "check::count")]
     pub iterations: u32,
     /// Which effects the scene runs; left out: the defaults.
     pub effects: Effects,
     /// The wind, when `effects.wind` is on.
+    #[serde(deserialize_with = "check::wind")]
     pub wind: Wind,
 }
 
@@ -83,13 +92,18 @@ impl Default for CameraDesc {
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
 #[serde(default, deny_unknown_fields)]
 pub struct PlaneDesc {
+    #[serde(deserialize_with = "check::position")]
     pub position: Vec3,
+    #[serde(deserialize_with = "check::normal")]
     pub normal: Vec3,
     /// Turn about the normal, degrees (orients a rectangle).
     pub spin_deg: f32,
     /// Half extents of the rectangle along the plane's local x and z; `None`: infinite.
+    #[serde(deserialize_with = "check::opt_rect")]
     pub half_extents: Option<Vec2>,
+    #[serde(deserialize_with = "check::friction")]
     pub friction: f32,
+    #[serde(deserialize_with = "check::restitution")]
     pub restitution: f32,
 }
 
@@ -116,9 +130,9 @@ impl PlaneDesc {
 
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
 pub enum ShapeDesc {
-    Sphere(f32),
+    Sphere(#[serde(deserialize_with = "check::size")] f32),
     /// Half extents.
-    Cuboid(Vec3),
+    Cuboid(#[serde(deserialize_with = "check::sizes")] Vec3),
 }
 
 /// One body.
@@ -127,15 +141,23 @@ pub enum ShapeDesc {
 pub struct BodyDesc {
     pub shape: ShapeDesc,
     pub kind: RigidBody,
+    #[serde(deserialize_with = "check::position")]
     pub position: Vec3,
     /// Euler angles XYZ, degrees.
+    #[serde(deserialize_with = "check::angles")]
     pub rotation_deg: Vec3,
+    #[serde(deserialize_with = "check::velocity")]
     pub velocity: Vec3,
+    #[serde(deserialize_with = "check::spin")]
     pub angular_velocity: Vec3,
     /// kg; when absent, `density` (or water's) times the volume.
+    #[serde(deserialize_with = "check::opt_positive")]
     pub mass: Option<f32>,
+    #[serde(deserialize_with = "check::opt_positive")]
     pub density: Option<f32>,
+    #[serde(deserialize_with = "check::opt_friction")]
     pub friction: Option<f32>,
+    #[serde(deserialize_with = "check::opt_restitution")]
     pub restitution: Option<f32>,
 }
 
@@ -186,13 +208,16 @@ pub enum BodyGroup {
     /// count.x × count.y × count.z copies `spacing` apart.
     Grid {
         body: BodyDesc,
+        #[serde(deserialize_with = "check::grid_count")]
         count: UVec3,
         spacing: Vec3,
     },
     /// `count` copies stacked along +Y `spacing` apart, every other one shifted by `jitter`.
     Stack {
         body: BodyDesc,
+        #[serde(deserialize_with = "check::group_count")]
         count: u32,
+        #[serde(deserialize_with = "check::spacing")]
         spacing: f32,
         #[serde(default)]
         jitter: Vec3,
@@ -201,7 +226,9 @@ pub enum BodyGroup {
     /// makes it a one-deep wall (rows of base, base−1, …).
     Pyramid {
         body: BodyDesc,
+        #[serde(deserialize_with = "check::pyramid_base")]
         base: u32,
+        #[serde(deserialize_with = "check::spacing")]
         spacing: f32,
         #[serde(default)]
         flat: bool,
@@ -210,6 +237,7 @@ pub enum BodyGroup {
     /// the mass of each is scaled by a random factor in `mass_range` when given.
     Pile {
         body: BodyDesc,
+        #[serde(deserialize_with = "check::group_count")]
         count: u32,
         seed: u64,
         min: Vec3,
@@ -220,7 +248,9 @@ pub enum BodyGroup {
     /// A row of `count` copies `spacing` apart along `direction`.
     Row {
         body: BodyDesc,
+        #[serde(deserialize_with = "check::group_count")]
         count: u32,
+        #[serde(deserialize_with = "check::spacing")]
         spacing: f32,
         direction: Vec3,
     },

@@ -16,6 +16,25 @@ impl Rng {
     }
 }
 
+/// How many bodies a group makes, without making them.
+pub fn group_size(group: &BodyGroup) -> u64 {
+    match group {
+        BodyGroup::Single(_) => 1,
+        BodyGroup::Grid { count, .. } => count.x as u64 * count.y as u64 * count.z as u64,
+        BodyGroup::Stack { count, .. }
+        | BodyGroup::Pile { count, .. }
+        | BodyGroup::Row { count, .. } => *count as u64,
+        BodyGroup::Pyramid { base, flat, .. } => {
+            let b = *base as u64;
+            if *flat {
+                b * (b + 1) / 2
+            } else {
+                b * (b + 1) * (2 * b + 1) / 6
+            }
+        }
+    }
+}
+
 /// The bodies of one group.
 pub fn expand_group(group: &BodyGroup) -> Vec<BodyDesc> {
     let at = |b: &BodyDesc, offset: Vec3| BodyDesc {

@@ -3,13 +3,14 @@
 //! loads them through the asset system; tests and benches parse the very same files and
 //! spawn them with [`SceneDesc::spawn`], no asset server needed.
 
+mod check;
 mod desc;
 mod generate;
 #[cfg(feature = "viz")]
 mod loader;
 
 pub use desc::*;
-pub use generate::expand_group;
+pub use generate::{expand_group, group_size};
 #[cfg(feature = "viz")]
 pub use loader::SceneLoader;
 
@@ -18,6 +19,9 @@ use bevy::prelude::*;
 use crate::body::*;
 use crate::collider::Collider;
 use crate::settings::{Gravity, Integrator, SolverSettings};
+
+/// The most bodies a scene file may generate.
+pub const MAX_SCENE_BODIES: u64 = 1_000_000;
 
 /// Marks an entity spawned from a scene, so a scene switch can despawn exactly those.
 #[derive(Component, Clone, Copy, Debug, Default)]
@@ -40,12 +44,25 @@ pub enum SceneError {
 impl SceneDesc {
     /// Parses a scene from RON text; `path` names the file in errors.
     pub fn from_ron(text: &str, path: &str) -> Result<Self, SceneError> {
-        ron::from_str(text).map_err(|e: ron::error::SpannedError| SceneError::Parse {
-            path: path.to_string(),
-            line: e.span.start.line,
-            col: e.span.start.col,
-            message: e.code.to_string(),
-        })
+        let scene: Self =
+            ron::from_str(text).map_err(|e: ron::error::SpannedError| SceneError::Parse {
+                path: path.to_string(),
+                line: e.span.start.line,
+                col: e.span.start.col,
+                message: e.code.to_string(),
+            })?;
+        let total: u64 = scene.bodies.iter().map(generate::group_size).sum();
+        if total > MAX_SCENE_BODIES {
+            return Err(SceneError::Parse {
+                path: path.to_string(),
+                line: 1,
+                col: 1,
+                message: format!(
+                    "invalid value: bodies make {total} bodies, more than {MAX_SCENE_BODIES}"
+                ),
+            });
+        }
+        Ok(scene)
     }
 
     /// Reads and parses a scene file.
@@ -64,7 +81,12 @@ impl SceneDesc {
         let s = self.settings;
         commands.insert_resource(Gravity(s.gravity));
         commands.insert_resource(s.integrator);
-        commands.insert_resource(Time::<Fixed>::from_hz(s.hz));
+        // Files are checked on load; a scene built in code is clamped here.
+        let (hz, why) = crate::limits::clamp_rate(s.hz);
+        if let Some(why) = why {
+            error!("tumble: scene {:?} settings.hz: {why}", self.name);
+        }
+        commands.insert_resource(Time::<Fixed>::from_hz(hz));
         let solver = SolverSettings {
             substeps: s.substeps,
             iterations: s.iterations,

@@ -33,8 +33,8 @@ pub fn writeback_bodies(
                 field: "Transform",
                 reason: format!("non-finite state after step {}", world.step_count),
             });
-            vel.linear = Vec3::ZERO;
-            vel.angular = Vec3::ZERO;
+            // Frozen at rest without counting as the user's edit, which would readmit it.
+            *vel.bypass_change_detection() = Velocity::ZERO;
             continue;
         }
         tf.translation = pos;

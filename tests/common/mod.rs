@@ -1,28 +1,44 @@
-//! Shared helpers for the headless integration tests: an app that runs exactly one
-//! 60 Hz physics step per `update()`.
+//! Shared helpers for the headless integration tests: one app builder with a frame-pacing
+//! parameter, `step` that counts physics steps (not frames), `assert_near`, one `G`,
+//! one seeded RNG, and body spawners.
 #![allow(dead_code)]
+
+use std::time::Duration;
 
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use tumble::prelude::*;
 
+/// The fixed step, s (the plugin's default 60 Hz).
 pub const H: f32 = 1.0 / 60.0;
+/// Standard gravity, m/s² (the default `Gravity`).
+pub const G: f32 = 9.81;
+
+/// How frames relate to physics steps, as in a real game loop (physics at 60 Hz).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Pacing {
+    /// Exactly one fixed step per `update()` (`FixedTimesteps(1)`).
+    OneStep,
+    /// Rendering at this many frames per second: most frames run no fixed step (above
+    /// 60 Hz) or several (below). Uses `ManualDuration(1/hz)`.
+    Render(f64),
+}
+
+impl Pacing {
+    /// The three pacings lifecycle tests run under: one step per update, a 240 Hz
+    /// render (three frames in four run no step) and a 30 Hz render (two steps a frame).
+    pub const GAME: [Pacing; 3] = [Pacing::OneStep, Pacing::Render(240.0), Pacing::Render(30.0)];
+}
 
 /// MinimalPlugins + TransformPlugin + TumblePlugin, one fixed step per update, with
 /// sleeping off so that it hides nothing.
 pub fn app() -> App {
-    let mut app = app_with_sleeping();
-    app.world_mut().resource_mut::<Effects>().sleeping = false;
-    app
+    paced_app(Pacing::OneStep, false)
 }
 
 /// The same with the default settings, sleeping on.
 pub fn app_with_sleeping() -> App {
-    let mut app = App::new();
-    app.add_plugins((MinimalPlugins, TransformPlugin, TumblePlugin::default()))
-        .insert_resource(TimeUpdateStrategy::FixedTimesteps(1));
-    app.update(); // The first update only starts the clock: 0 steps.
-    app
+    paced_app(Pacing::OneStep, true)
 }
 
 pub fn app_without_gravity() -> App {
@@ -31,10 +47,115 @@ pub fn app_without_gravity() -> App {
     app
 }
 
-/// Runs `n` physics steps.
+/// The one app builder: physics at 60 Hz under `pacing`, sleeping on or off.
+pub fn paced_app(pacing: Pacing, sleeping: bool) -> App {
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, TransformPlugin, TumblePlugin::default()))
+        .insert_resource(strategy(pacing));
+    app.world_mut().resource_mut::<Effects>().sleeping = sleeping;
+    app.insert_resource(PacingOf(pacing));
+    app.update(); // The first update only starts the clock: 0 steps.
+    app
+}
+
+#[derive(Resource, Clone, Copy)]
+struct PacingOf(Pacing);
+
+fn strategy(pacing: Pacing) -> TimeUpdateStrategy {
+    match pacing {
+        Pacing::OneStep => TimeUpdateStrategy::FixedTimesteps(1),
+        Pacing::Render(hz) => TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(1.0 / hz)),
+    }
+}
+
+/// Physics steps taken so far.
+pub fn steps_taken(app: &App) -> u64 {
+    app.world().resource::<PhysicsWorld>().step_count
+}
+
+/// Runs frames until exactly `n` more physics steps have run, whatever the pacing. Under
+/// a slow render that would overshoot (two steps a frame, one left), the last frame is
+/// shortened to one step, as a variable frame time would.
 pub fn step(app: &mut App, n: usize) {
-    for _ in 0..n {
+    let target = steps_taken(app) + n as u64;
+    let pacing = app.world().resource::<PacingOf>().0;
+    let mut frames = 0;
+    while steps_taken(app) < target {
+        let left = target - steps_taken(app);
+        if let Pacing::Render(hz) = pacing {
+            let per_frame = (60.0 / hz).floor() as u64;
+            if per_frame > left {
+                app.insert_resource(TimeUpdateStrategy::FixedTimesteps(left as u32));
+                app.update();
+                app.insert_resource(strategy(pacing));
+                continue;
+            }
+        }
         app.update();
+        frames += 1;
+        assert!(frames < 100 * n + 100, "physics stopped stepping");
+    }
+    assert_eq!(steps_taken(app), target, "overshot the step count");
+}
+
+/// Runs `frames` frames (any number of physics steps, including none).
+pub fn frames(app: &mut App, frames: usize) {
+    for _ in 0..frames {
+        app.update();
+    }
+}
+
+/// |actual − expected| ≤ tol, with both values and what they are in the message.
+#[track_caller]
+pub fn assert_near(actual: f32, expected: f32, tol: f32, what: &str) {
+    assert!(
+        (actual - expected).abs() <= tol,
+        "{what}: {actual} but expected {expected} ± {tol} (off by {})",
+        (actual - expected).abs()
+    );
+}
+
+/// |actual − expected| ≤ tol for each component.
+#[track_caller]
+pub fn assert_near_vec(actual: Vec3, expected: Vec3, tol: f32, what: &str) {
+    assert!(
+        (actual - expected).abs().max_element() <= tol,
+        "{what}: {actual} but expected {expected} ± {tol}"
+    );
+}
+
+/// The tests' one seeded random source (SplitMix64): the same seed, the same numbers.
+pub struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Self {
+        Self(seed)
+    }
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    /// Uniform in [0, 1).
+    pub fn unit(&mut self) -> f32 {
+        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
+    }
+    /// Uniform in [lo, hi).
+    pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.unit()
+    }
+    /// Log-uniform in [lo, hi): as likely 1–10 as 10–100.
+    pub fn log_range(&mut self, lo: f32, hi: f32) -> f32 {
+        (lo.ln() + (hi.ln() - lo.ln()) * self.unit()).exp()
+    }
+    pub fn vec3(&mut self, lo: Vec3, hi: Vec3) -> Vec3 {
+        Vec3::new(
+            self.range(lo.x, hi.x),
+            self.range(lo.y, hi.y),
+            self.range(lo.z, hi.z),
+        )
     }
 }
 
@@ -48,6 +169,14 @@ pub fn rot(app: &App, e: Entity) -> Quat {
 
 pub fn vel(app: &App, e: Entity) -> Velocity {
     *app.world().get::<Velocity>(e).unwrap()
+}
+
+pub fn asleep(app: &App, e: Entity) -> bool {
+    app.world().get::<Sleeping>(e).is_some()
+}
+
+pub fn rejected_field(app: &App, e: Entity) -> Option<&'static str> {
+    app.world().get::<PhysicsRejected>(e).map(|r| r.field)
 }
 
 /// A dynamic ball of radius `r` and mass `m` at `p` moving at `v`.
@@ -88,4 +217,34 @@ pub fn cuboid(app: &mut App, h: Vec3, m: f32, p: Vec3) -> Entity {
 /// Tilt of a body's local +Y away from world +Y, radians.
 pub fn tilt(app: &App, e: Entity) -> f32 {
     (rot(app, e) * Vec3::Y).angle_between(Vec3::Y)
+}
+
+/// Every dynamic body's pose and velocity as raw bits, in entity order.
+pub fn snapshot(app: &mut App) -> Vec<(Entity, [u32; 13])> {
+    let mut q = app
+        .world_mut()
+        .query_filtered::<(Entity, &Transform, &Velocity), With<RigidBody>>();
+    let mut out: Vec<_> = q
+        .iter(app.world())
+        .map(|(e, t, v)| {
+            let f = [
+                t.translation.x,
+                t.translation.y,
+                t.translation.z,
+                t.rotation.x,
+                t.rotation.y,
+                t.rotation.z,
+                t.rotation.w,
+                v.linear.x,
+                v.linear.y,
+                v.linear.z,
+                v.angular.x,
+                v.angular.y,
+                v.angular.z,
+            ];
+            (e, f.map(f32::to_bits))
+        })
+        .collect();
+    out.sort_by_key(|(e, _)| *e);
+    out
 }

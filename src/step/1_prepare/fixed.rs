@@ -6,8 +6,15 @@
 //! - a marked entity whose `Transform`, `Collider`, `RigidBody`, `Friction`,
 //!   `Restitution`, `Velocity` or `ExternalForce` changed (for a sleeper that is the
 //!   user's hand, and it wakes);
-//! - a removed `Sleeping` (woken), `Collider`, `RigidBody` or marker (despawned);
+//! - a removed `Sleeping` (woken), `Collider`, `RigidBody` or marker, or a despawn:
+//!   recorded by observers the moment it happens, whatever the frame pacing
+//!   ([`PendingRechecks`]);
 //! - every sleeper, when sleeping is switched off or the global push is on.
+//!
+//! A static collider that moves, changes shape or leaves, and a sleeper that is despawned
+//! or loses its collider, wakes the sleepers it touched, and everything asleep that
+//! touches those (Box2D wakes the island of a destroyed body the same way): nothing is
+//! left hanging on a support that is gone.
 //!
 //! It runs before [`prepare_bodies`](super::prepare_bodies) with a command flush in
 //! between, so a body woken here is gathered in the same step.
@@ -15,11 +22,12 @@
 use bevy::ecs::query::QueryData;
 use bevy::prelude::*;
 
-use super::{fixed_entry, reject, validate};
+use super::lifecycle::PendingRechecks;
+use super::{fixed_entry, reject, validate_static};
 use crate::body::*;
 use crate::collider::Collider;
 use crate::effects::Effects;
-use crate::settings::GlobalForce;
+use crate::settings::{GlobalForce, SolverSettings};
 use crate::world::PhysicsWorld;
 
 /// Tumble's bookkeeping: this entity is static or asleep and lives in the fixed set, so
@@ -57,13 +65,16 @@ type ChangedFilter = (
 /// Not yet in the fixed set, and not rejected.
 type Unmarked = (Without<InFixedSet>, Without<PhysicsRejected>);
 
-/// Entities that can leave or need re-entering the fixed set.
-#[derive(bevy::ecs::system::SystemParam)]
-pub struct Removed<'w, 's> {
-    sleeping: RemovedComponents<'w, 's, Sleeping>,
-    collider: RemovedComponents<'w, 's, Collider>,
-    body: RemovedComponents<'w, 's, RigidBody>,
-    marker: RemovedComponents<'w, 's, InFixedSet>,
+/// Scratch kept between steps: the entities to look at, and the bounds of entries that
+/// moved or left (whose sleeping neighbours wake).
+#[derive(Default)]
+pub struct SyncScratch {
+    /// (entity, wake it if asleep)
+    recheck: Vec<(Entity, bool)>,
+    disturbed: Vec<(Vec3, Vec3)>,
+    /// Per fixed entry: woken already in this search.
+    woken: Vec<bool>,
+    wake_list: Vec<Entity>,
 }
 
 /// Brings the fixed set up to date with what changed since the last step (see the module
@@ -78,13 +89,20 @@ pub fn sync_fixed_set(
     fell_asleep: Query<Entity, (With<Sleeping>, Unmarked)>,
     changed: Query<(Entity, Has<Sleeping>), ChangedFilter>,
     sleepers: Query<Entity, (With<Sleeping>, With<InFixedSet>)>,
-    mut removed: Removed,
+    mut pending: ResMut<PendingRechecks>,
+    settings: Res<SolverSettings>,
     items: Query<FixedItem>,
-    mut recheck: Local<Vec<(Entity, bool)>>,
+    mut scratch: Local<SyncScratch>,
 ) {
     let world = &mut *world;
-    // (entity, wake it if asleep)
+    let SyncScratch {
+        recheck,
+        disturbed,
+        woken,
+        wake_list,
+    } = &mut *scratch;
     recheck.clear();
+    disturbed.clear();
     let wake_all = !effects.sleeping || (effects.global_force && global.0 != Vec3::ZERO);
     if wake_all {
         recheck.extend(sleepers.iter().map(|e| (e, true)));
@@ -92,10 +110,7 @@ pub fn sync_fixed_set(
     recheck.extend(changed.iter());
     recheck.extend(unmarked.iter().map(|e| (e, false)));
     recheck.extend(fell_asleep.iter().map(|e| (e, wake_all)));
-    recheck.extend(removed.sleeping.read().map(|e| (e, false)));
-    recheck.extend(removed.collider.read().map(|e| (e, false)));
-    recheck.extend(removed.body.read().map(|e| (e, false)));
-    recheck.extend(removed.marker.read().map(|e| (e, false)));
+    recheck.extend(pending.entities.drain(..).map(|e| (e, false)));
     if recheck.is_empty() {
         return;
     }
@@ -104,14 +119,26 @@ pub fn sync_fixed_set(
     recheck.dedup_by_key(|&mut (e, _)| e);
 
     for &(entity, wake) in recheck.iter() {
+        let old = world.fixed.get(entity).copied();
         let Ok(item) = items.get(entity) else {
+            // Despawned (or lost its Transform): whatever slept on it wakes.
+            disturbed.extend(old.map(|c| (c.aabb_min, c.aabb_max)));
             world.fixed.remove(entity);
             if let Ok(mut e) = commands.get_entity(entity) {
                 e.try_remove::<InFixedSet>();
             }
             continue;
         };
-        let was_asleep = world.fixed.get(entity).is_some_and(|c| c.asleep);
+        // A sleeper woken where it lies, with its collider, needs no help: it moves, and
+        // touching wakes its neighbours. Anything that leaves, jumps or changes shape does.
+        let woken_in_place = old.is_some_and(|c| {
+            c.asleep
+                && !item.rejected
+                && item.collider.is_some_and(|col| col.shape == c.shape)
+                && c.pos == item.transform.translation
+                && c.rot == item.transform.rotation.normalize()
+        });
+        let was_asleep = old.is_some_and(|c| c.asleep);
         if wake && item.sleeping {
             commands.entity(entity).remove::<Sleeping>();
         }
@@ -124,6 +151,9 @@ pub fn sync_fixed_set(
             && (is_static || (item.sleeping && !wake))
             && (item.collider.is_some() || item.kind.is_some());
         if !belongs {
+            if !woken_in_place {
+                disturbed.extend(old.map(|c| (c.aabb_min, c.aabb_max)));
+            }
             world.fixed.remove(entity);
             if item.marked {
                 commands.entity(entity).remove::<InFixedSet>();
@@ -131,27 +161,72 @@ pub fn sync_fixed_set(
             continue;
         }
         match item.collider {
-            Some(c) => {
-                let kind = RigidBody::Static;
-                match validate(item.transform, &Velocity::ZERO, kind, None, Some(&c.shape)) {
-                    Ok(()) => {
-                        let entry =
-                            fixed_entry(entity, item.transform, c, item.friction, item.restitution);
-                        world.fixed.insert(entry(item.sleeping));
-                    }
-                    Err(e) => {
-                        world.fixed.remove(entity);
-                        reject(&mut commands, entity, e);
-                        continue;
+            Some(c) => match validate_static(item.transform, c, item.friction, item.restitution) {
+                Ok(()) => {
+                    let entry =
+                        fixed_entry(entity, item.transform, c, item.friction, item.restitution);
+                    world.fixed.insert(entry(item.sleeping));
+                    let new = world.fixed.get(entity).copied();
+                    if let (Some(o), Some(n)) = (old, new)
+                        && (o.pos, o.rot, o.shape) != (n.pos, n.rot, n.shape)
+                    {
+                        disturbed.push((o.aabb_min, o.aabb_max));
+                        disturbed.push((n.aabb_min, n.aabb_max));
                     }
                 }
-            }
+                Err(e) => {
+                    disturbed.extend(old.map(|c| (c.aabb_min, c.aabb_max)));
+                    world.fixed.remove(entity);
+                    reject(&mut commands, entity, e);
+                    continue;
+                }
+            },
             None => {
+                disturbed.extend(old.map(|c| (c.aabb_min, c.aabb_max)));
                 world.fixed.remove(entity);
             }
         }
         if !item.marked {
             commands.entity(entity).insert(InFixedSet);
+        }
+    }
+    let margin = settings.speculative_margin;
+    wake_neighbours(&mut commands, world, disturbed, (woken, wake_list), margin);
+}
+
+/// Wakes every sleeper whose bounds (fattened by `margin`) meet one of the `disturbed`
+/// boxes, then every sleeper touching those, and so on: the sleeping island around a
+/// support that moved or left. Woken bodies leave the fixed set now, so the gather that
+/// follows this step takes them.
+fn wake_neighbours(
+    commands: &mut Commands,
+    world: &mut PhysicsWorld,
+    disturbed: &mut Vec<(Vec3, Vec3)>,
+    (woken, list): (&mut Vec<bool>, &mut Vec<Entity>),
+    margin: f32,
+) {
+    if disturbed.is_empty() {
+        return;
+    }
+    world.fixed.update_search();
+    woken.clear();
+    woken.resize(world.fixed.len(), false);
+    list.clear();
+    let entries = world.fixed.entries();
+    while let Some((lo, hi)) = disturbed.pop() {
+        world.fixed.overlapping(lo, hi, margin, |i| {
+            let c = &entries[i as usize];
+            if c.asleep && !woken[i as usize] {
+                woken[i as usize] = true;
+                list.push(c.entity);
+                disturbed.push((c.aabb_min, c.aabb_max));
+            }
+        });
+    }
+    for &entity in list.iter() {
+        world.fixed.remove(entity);
+        if let Ok(mut e) = commands.get_entity(entity) {
+            e.remove::<(Sleeping, InFixedSet)>().insert(SleepTimer(0.0));
         }
     }
 }

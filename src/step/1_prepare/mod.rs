@@ -4,6 +4,8 @@
 //! with [`PhysicsRejected`], and reported once in the log by entity and field.
 
 mod fixed;
+mod lifecycle;
+mod settings;
 mod validate;
 
 use bevy::ecs::query::QueryData;
@@ -16,8 +18,10 @@ use crate::settings::SolverSettings;
 use crate::world::{BodyState, ColliderEntry, ForceModel, PhysicsWorld, STATIC, SolverBody};
 
 pub use fixed::{InFixedSet, sync_fixed_set};
+pub use lifecycle::{PendingRechecks, readmit_rejected, record_removal};
+pub use settings::{guard_fixed_rate, validate_settings};
 pub use validate::validate;
-use validate::validate_force;
+use validate::{validate_force, validate_mass_properties, validate_scalars};
 
 /// The components prepare reads from each awake body.
 #[derive(QueryData)]
@@ -77,7 +81,7 @@ pub fn prepare_bodies(
             commands.entity(entity).insert(InFixedSet);
             if let Some(c) = item.collider {
                 let entry = fixed_entry(entity, &tf, c, item.friction, item.restitution);
-                match validate(&tf, &Velocity::ZERO, kind, None, Some(&c.shape)) {
+                match validate_static(&tf, c, item.friction, item.restitution) {
                     Ok(()) => world.fixed.insert(entry(false)),
                     Err(e) => reject(&mut commands, entity, e),
                 }
@@ -86,8 +90,15 @@ pub fn prepare_bodies(
         }
         let vel = item.velocity.copied().unwrap_or(Velocity::ZERO);
         let shape = item.collider.map(|c| c.shape);
+        let damping = Vec2::new(
+            item.linear_damping.map_or(0.0, |d| d.0),
+            item.angular_damping.map_or(0.0, |d| d.0),
+        );
         let checked = validate(&tf, &vel, kind, item.mass, shape.as_ref())
-            .and_then(|()| validate_force(item.force));
+            .and_then(|()| validate_force(item.force))
+            .and_then(|()| {
+                validate_scalars(item.friction, item.restitution, damping, item.gravity_scale)
+            });
         if let Err(e) = checked {
             reject(&mut commands, entity, e);
             continue;
@@ -103,14 +114,18 @@ pub fn prepare_bodies(
             mass: item.mass,
             shape,
             force: item.force,
-            damping: Vec2::new(
-                item.linear_damping.map_or(0.0, |d| d.0),
-                item.angular_damping.map_or(0.0, |d| d.0),
-            ),
+            damping,
             gravity_scale: item.gravity_scale.map_or(1.0, |g| g.0),
             rotation_locked: item.lock_rotation || !effects.rotation,
         };
         let (mut state, solver) = gather_body(input, &settings);
+        if kind == RigidBody::Dynamic {
+            let mass = solver.inv_mass.recip();
+            if let Err(e) = validate_mass_properties(mass, state.inertia, item.mass.is_some()) {
+                reject(&mut commands, entity, e);
+                continue;
+            }
+        }
         state.sleep_time = item.sleep_timer.map_or(0.0, |t| t.0);
         world.bodies.push(state);
         world.solver_bodies.push(solver);
@@ -129,6 +144,18 @@ pub fn prepare_bodies(
             });
         }
     }
+}
+
+/// A static collider's input: its pose, shape and material.
+fn validate_static(
+    tf: &Transform,
+    c: &Collider,
+    friction: Option<&Friction>,
+    restitution: Option<&Restitution>,
+) -> Result<(), (&'static str, String)> {
+    let kind = RigidBody::Static;
+    validate(tf, &Velocity::ZERO, kind, None, Some(&c.shape))
+        .and_then(|()| validate_scalars(friction, restitution, Vec2::ZERO, None))
 }
 
 /// Leaves a body out of the simulation, tagged with [`PhysicsRejected`] and logged once.

@@ -5,6 +5,8 @@ use bevy::prelude::*;
 
 use crate::body::*;
 use crate::collider::Shape;
+use crate::effects::GravityScale;
+use crate::limits;
 
 /// Checks one body's input. Returns the offending field and why.
 pub fn validate(
@@ -26,9 +28,20 @@ pub fn validate(
     if !vel.angular.is_finite() {
         return Err(("Velocity.angular", format!("{}", vel.angular)));
     }
-    if let Some(m) = mass.filter(|m| kind == RigidBody::Dynamic && !(m.0.is_finite() && m.0 > 0.0))
-    {
-        return Err(("Mass", format!("{} kg: mass must be finite and > 0", m.0)));
+    if !vel.linear.is_finite() || vel.linear.abs().max_element() > limits::MAX_SPEED {
+        return Err((
+            "Velocity.linear",
+            format!("{}: beyond ±{}", vel.linear, limits::MAX_SPEED),
+        ));
+    }
+    if vel.angular.abs().max_element() > limits::MAX_RATE {
+        return Err((
+            "Velocity.angular",
+            format!("{}: beyond ±{}", vel.angular, limits::MAX_RATE),
+        ));
+    }
+    if let Some(m) = mass.filter(|_| kind == RigidBody::Dynamic) {
+        limits::positive("Mass", m.0, limits::MAX_MASS).map_err(|e| (e.field, e.reason))?;
     }
     if let Some(shape) = shape {
         shape
@@ -42,13 +55,70 @@ pub fn validate(
 }
 
 pub(super) fn validate_force(force: Option<&ExternalForce>) -> Result<(), (&'static str, String)> {
-    match force {
-        Some(f) if !(f.force.is_finite() && f.torque.is_finite()) => Err((
+    let Some(f) = force else { return Ok(()) };
+    let max = limits::MAX_FORCE;
+    let ok = |v: Vec3| v.is_finite() && v.abs().max_element() <= max;
+    if ok(f.force) && ok(f.torque) {
+        Ok(())
+    } else {
+        Err((
             "ExternalForce",
-            format!("force {} torque {}", f.force, f.torque),
-        )),
-        _ => Ok(()),
+            format!(
+                "force {} torque {}: must be finite and within ±{max}",
+                f.force, f.torque
+            ),
+        ))
     }
+}
+
+/// A body's material and per-body scalars: friction and gravity scale finite, restitution
+/// within 0..=1, damping finite and ≥ 0.
+pub(super) fn validate_scalars(
+    friction: Option<&Friction>,
+    restitution: Option<&Restitution>,
+    damping: Vec2,
+    gravity_scale: Option<&GravityScale>,
+) -> Result<(), (&'static str, String)> {
+    use limits::{MAX_COEFFICIENT, MAX_RATE, scalar};
+    let named = |e: limits::Invalid| (e.field, e.reason);
+    if let Some(f) = friction {
+        scalar("Friction", f.0, 0.0..=MAX_COEFFICIENT).map_err(named)?;
+    }
+    if let Some(r) = restitution {
+        scalar("Restitution", r.0, 0.0..=1.0).map_err(named)?;
+    }
+    scalar("LinearDamping", damping.x, 0.0..=MAX_RATE).map_err(named)?;
+    scalar("AngularDamping", damping.y, 0.0..=MAX_RATE).map_err(named)?;
+    if let Some(g) = gravity_scale {
+        g.check().map_err(named)?;
+    }
+    Ok(())
+}
+
+/// The mass properties a dynamic body ends up with: mass, inverse mass, inertia and its
+/// inverse all finite and positive. A shape too small for its density to give a usable
+/// mass (a 1e-12 m sphere without `Mass`) is refused here rather than handed to the
+/// solver as an infinite inverse mass.
+pub(super) fn validate_mass_properties(
+    mass: f32,
+    inertia: Vec3,
+    explicit: bool,
+) -> Result<(), (&'static str, String)> {
+    let ok = |x: f32| x.is_finite() && x > 0.0 && x.recip().is_finite();
+    let field = if explicit { "Mass" } else { "Collider" };
+    if !ok(mass) {
+        return Err((
+            field,
+            format!("mass {mass} kg from the collider's volume is unusable; give the body a Mass"),
+        ));
+    }
+    if !(ok(inertia.x) && ok(inertia.y) && ok(inertia.z)) {
+        return Err((
+            field,
+            format!("inertia {inertia} kg·m² is not finite and positive (mass {mass} kg)"),
+        ));
+    }
+    Ok(())
 }
 
 #[cfg(test)]

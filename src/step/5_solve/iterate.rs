@@ -159,7 +159,12 @@ pub fn solve(
                 );
                 let old = p.tangent_impulse;
                 let limit = c.friction * p.normal_impulse;
-                let new = (old - p.tangent_mass * vt).clamp_length_max(limit);
+                let mut new = (old - p.tangent_mass * vt).clamp_length_max(limit);
+                // `clamp_length_max` passes NaN through: a body gone non-finite (it will be
+                // frozen at writeback) must not hand NaN to its neighbour through friction.
+                if !new.is_finite() {
+                    new = Vec2::ZERO;
+                }
                 p.tangent_impulse = new;
                 apply_tangent(&mut a, &mut b, tangents, &p.tangent_rows, new - old, spin);
             }
