@@ -33,6 +33,16 @@ pub const MAX_RATE: f32 = 1.0e5;
 /// Largest accepted dimensionless coefficient (friction, gravity scale, damping ratio).
 pub const MAX_COEFFICIENT: f32 = 1.0e4;
 
+/// Candidate pairs the broad phase keeps per step (8 bytes each: 8 MiB). A pile of
+/// thousands of bodies spawned into one point would otherwise ask for n²/2. Beyond it,
+/// pairs are dropped for that step and a warning is logged; the pile still separates,
+/// the dropped pairs are found again as it thins out.
+pub const MAX_PAIRS_PER_STEP: usize = 1 << 20;
+/// Contact manifolds (at most 4 points each) the narrow phase keeps per step: with their
+/// solver constraints about 1 KiB each, so ~130 MiB at the cap. Beyond it, pairs are
+/// skipped for that step and a warning is logged.
+pub const MAX_MANIFOLDS_PER_STEP: usize = 1 << 17;
+
 /// A refused value: which field and why.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Invalid {

@@ -33,7 +33,12 @@ fn run(bad: &dyn Fn(&mut App), good: &dyn Fn(&mut App)) -> Vec<(Entity, [u32; 13
     for b in [resting, falling] {
         assert!(rejected_field(&app, b).is_none(), "a body was rejected");
     }
-    assert_near(pos(&app, resting).y, 0.5, 2e-3, "the resting ball stays on the floor");
+    assert_near(
+        pos(&app, resting).y,
+        0.5,
+        2e-3,
+        "the resting ball stays on the floor",
+    );
     snapshot(&mut app)
 }
 
@@ -87,7 +92,11 @@ fn a_bad_global_for_two_steps_changes_nothing() {
         ),
         (
             "SolverSettings NaN speculative margin",
-            |a| a.world_mut().resource_mut::<SolverSettings>().speculative_margin = f32::NAN,
+            |a| {
+                a.world_mut()
+                    .resource_mut::<SolverSettings>()
+                    .speculative_margin = f32::NAN
+            },
             |a| {
                 a.insert_resource(SolverSettings::default());
             },
@@ -101,7 +110,11 @@ fn a_bad_global_for_two_steps_changes_nothing() {
         ),
         (
             "SolverSettings ∞ speed cap",
-            |a| a.world_mut().resource_mut::<SolverSettings>().max_linear_speed = f32::INFINITY,
+            |a| {
+                a.world_mut()
+                    .resource_mut::<SolverSettings>()
+                    .max_linear_speed = f32::INFINITY
+            },
             |a| {
                 a.insert_resource(SolverSettings::default());
             },
@@ -147,7 +160,11 @@ fn a_plugin_rate_of_zero_is_clamped_not_a_panic() {
         let mut app = App::new();
         app.add_plugins((MinimalPlugins, TransformPlugin, TumblePlugin { hz }));
         app.update();
-        let step = app.world().resource::<Time<Fixed>>().timestep().as_secs_f64();
+        let step = app
+            .world()
+            .resource::<Time<Fixed>>()
+            .timestep()
+            .as_secs_f64();
         assert!(
             (1.0 / step - expected).abs() < 1e-6 * expected,
             "hz {hz}: {} Hz",
@@ -169,7 +186,11 @@ fn a_nanosecond_fixed_step_is_clamped_before_the_loop_runs() {
     app.update(); // Would be 16 million steps at 1 ns.
     let step = app.world().resource::<Time<Fixed>>().timestep();
     assert_eq!(step, Duration::from_secs_f64(1e-4), "clamped to 10 kHz");
-    assert!(steps_taken(&app) - before <= 161, "{} steps", steps_taken(&app) - before);
+    assert!(
+        steps_taken(&app) - before <= 161,
+        "{} steps",
+        steps_taken(&app) - before
+    );
 }
 
 #[test]
@@ -196,7 +217,10 @@ fn scene_fields_are_checked_with_their_names() {
         ("settings: (gravity: (0.0, -1e30, 0.0))", "gravity"),
         ("settings: (wind: (drag: -1.0))", "drag"),
         ("bodies: [Single((shape: Sphere(-0.5)))]", "size"),
-        ("bodies: [Single((shape: Cuboid((0.5, 0.0, 0.5))))]", "half extents"),
+        (
+            "bodies: [Single((shape: Cuboid((0.5, 0.0, 0.5))))]",
+            "half extents",
+        ),
         ("bodies: [Single((mass: Some(0.0)))]", "mass"),
         ("bodies: [Single((restitution: Some(2.0)))]", "restitution"),
         ("bodies: [Single((velocity: (1e30, 0.0, 0.0)))]", "velocity"),
@@ -231,7 +255,12 @@ fn a_rejected_body_comes_back_when_its_input_is_fixed() {
     assert!(rejected_field(&app, b).is_none(), "readmitted");
     // It fell for 30 steps from rest: ½·g·t², within the substep error.
     let t = 30.0 * H;
-    assert_near(5.0 - pos(&app, b).y, 0.5 * G * t * t, G * H / 4.0 * t + 1e-3, "fall");
+    assert_near(
+        5.0 - pos(&app, b).y,
+        0.5 * G * t * t,
+        G * H / 4.0 * t + 1e-3,
+        "fall",
+    );
 }
 
 #[test]
@@ -244,7 +273,12 @@ fn a_rejected_static_comes_back_when_fixed() {
     assert_eq!(rejected_field(&app, floor), Some("Friction"));
     app.world_mut().entity_mut(floor).insert(Friction(0.5));
     step(&mut app, 60);
-    assert_near(pos(&app, b).y, 0.5, 2e-3, "the ball lands on the readmitted floor");
+    assert_near(
+        pos(&app, b).y,
+        0.5,
+        2e-3,
+        "the ball lands on the readmitted floor",
+    );
 }
 
 #[test]

@@ -11,6 +11,7 @@ mod sweep_and_prune;
 
 use bevy::prelude::*;
 
+use crate::limits::MAX_PAIRS_PER_STEP;
 use crate::settings::SolverSettings;
 use crate::world::{ColliderEntry, PhysicsWorld, STATIC};
 
@@ -25,6 +26,8 @@ pub struct BroadPhaseScratch {
     sap: SweepAndPrune,
     copied: Vec<u32>,
     found: Vec<u32>,
+    /// The pair cap was hit last step (warn once per episode).
+    capped: bool,
 }
 
 /// Updates the awake colliders' swept, fattened bounds and finds the overlapping pairs:
@@ -40,7 +43,8 @@ pub fn find_pairs(
     let scratch = &mut *scratch;
     let margin = settings.speculative_margin;
     update_bounds(world, margin);
-    scratch.sap.pairs(&world.colliders, &mut world.pairs);
+    let cap = MAX_PAIRS_PER_STEP;
+    let mut full = scratch.sap.pairs(&world.colliders, &mut world.pairs, cap);
 
     world.fixed.update_search();
     scratch.copied.clear();
@@ -56,6 +60,10 @@ pub fn find_pairs(
         world
             .fixed
             .overlapping(c.aabb_min, c.aabb_max, margin, |f| found.push(f));
+        if world.pairs.len() + found.len() > cap {
+            full = true;
+            break;
+        }
         for &f in found.iter() {
             let slot = &mut scratch.copied[f as usize];
             if *slot == u32::MAX {
@@ -68,6 +76,13 @@ pub fn find_pairs(
     if world.colliders.len() > awake {
         world.pairs.sort_unstable();
     }
+    if full && !scratch.capped {
+        warn!(
+            "tumble: more than {cap} overlapping pairs this step (a pile spawned into one \
+             point?); the rest wait for later steps"
+        );
+    }
+    scratch.capped = full;
 }
 
 /// Bounds over the start and free-end poses, fattened by `margin`.

@@ -14,8 +14,15 @@ pub struct SweepAndPrune {
 }
 
 impl SweepAndPrune {
-    /// All overlapping candidate pairs (i < j), in lexicographic order, like the reference.
-    pub fn pairs(&mut self, colliders: &[ColliderEntry], pairs: &mut Vec<(u32, u32)>) {
+    /// All overlapping candidate pairs (i < j), in lexicographic order, like the reference,
+    /// up to `cap` of them (the first `cap` met in the sweep). Returns whether the cap cut
+    /// the list short.
+    pub fn pairs(
+        &mut self,
+        colliders: &[ColliderEntry],
+        pairs: &mut Vec<(u32, u32)>,
+        cap: usize,
+    ) -> bool {
         pairs.clear();
         let key = |i: u32| colliders[i as usize].aabb_min.x;
         if self.order.len() != colliders.len() {
@@ -33,17 +40,23 @@ impl SweepAndPrune {
             self.order[j] = item;
         }
         self.active.clear();
-        for &i in &self.order {
+        let mut full = false;
+        'sweep: for &i in &self.order {
             let ci = &colliders[i as usize];
             self.active
                 .retain(|&j| colliders[j as usize].aabb_max.x >= ci.aabb_min.x);
             for &j in &self.active {
                 if candidate(ci, &colliders[j as usize]) {
+                    if pairs.len() == cap {
+                        full = true;
+                        break 'sweep;
+                    }
                     pairs.push((i.min(j), i.max(j)));
                 }
             }
             self.active.push(i);
         }
         pairs.sort_unstable();
+        full
     }
 }

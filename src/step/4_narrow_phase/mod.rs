@@ -17,6 +17,7 @@ mod sphere_sphere;
 use bevy::prelude::*;
 
 use crate::collider::Shape;
+use crate::limits::MAX_MANIFOLDS_PER_STEP;
 use crate::settings::SolverSettings;
 use crate::world::{ColliderEntry, PhysicsWorld, STATIC};
 
@@ -98,6 +99,17 @@ pub fn collide(
     ib: u32,
     margin: f32,
 ) -> Option<Manifold> {
+    let nudged;
+    let b = match coincident_nudge(a, b) {
+        Some(offset) => {
+            nudged = ColliderEntry {
+                pos: b.pos + offset,
+                ..*b
+            };
+            &nudged
+        }
+        None => b,
+    };
     let swap = a.shape.kind() > b.shape.kind();
     let (first, second) = if swap { (b, a) } else { (a, b) };
     let f = DISPATCH[first.shape.kind() as usize][second.shape.kind() as usize]?;
@@ -119,12 +131,48 @@ pub fn collide(
     Some(m)
 }
 
+/// Two colliders whose centres coincide give no direction to push apart: box–box ties on
+/// every axis, two spheres have no line between centres. Every pair of a pile spawned at
+/// one point would then push the same way, and the pile would squeeze out into a long
+/// line whose ends fly off. So a coincident pair is collided as if `b` sat a thousandth
+/// of the smaller shape's size away, in a direction hashed from the two entities: the
+/// pile's pairs push every which way and it spreads as a ball. Returns that offset.
+fn coincident_nudge(a: &ColliderEntry, b: &ColliderEntry) -> Option<Vec3> {
+    let size = |c: &ColliderEntry| {
+        let (lo, hi) = c.shape.aabb(Vec3::ZERO, Quat::IDENTITY);
+        (hi - lo).min_element() * 0.5
+    };
+    let scale = 1e-3 * size(a).min(size(b));
+    if !scale.is_finite() || a.pos.distance_squared(b.pos) > scale * scale {
+        return None;
+    }
+    let mut h = a.entity.to_bits() ^ b.entity.to_bits().rotate_left(32);
+    let mut next = || {
+        h = h.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = h;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
+    };
+    let dir = Vec3::new(next(), next(), next()).normalize_or(Vec3::Y);
+    Some(dir * scale)
+}
+
 /// Computes the manifolds of all candidate pairs and warm-starts them from the cache.
-pub fn collide_pairs(mut world: ResMut<PhysicsWorld>, settings: Res<SolverSettings>) {
+pub fn collide_pairs(
+    mut world: ResMut<PhysicsWorld>,
+    settings: Res<SolverSettings>,
+    mut capped: Local<bool>,
+) {
     let world = &mut *world;
     world.manifolds.clear();
     let dt = world.dt;
+    let mut full = false;
     for &(ia, ib) in &world.pairs {
+        if world.manifolds.len() == MAX_MANIFOLDS_PER_STEP {
+            full = true;
+            break;
+        }
         let (a, b) = (&world.colliders[ia as usize], &world.colliders[ib as usize]);
         let (da, db) = (is_dynamic(world, a.body), is_dynamic(world, b.body));
         if !da && !db {
@@ -157,6 +205,13 @@ pub fn collide_pairs(mut world: ResMut<PhysicsWorld>, settings: Res<SolverSettin
         }
         world.manifolds.push(m);
     }
+    if full && !*capped {
+        warn!(
+            "tumble: more than {MAX_MANIFOLDS_PER_STEP} contact manifolds this step; the \
+             rest wait for later steps"
+        );
+    }
+    *capped = full;
 }
 
 /// Gives each new point last step's impulses: from the point with the same feature id,

@@ -98,6 +98,9 @@ pub struct ContactConstraint {
     pub friction: f32,
     pub restitution: f32,
     pub softness: Softness,
+    /// Fastest push-out, m/s, this contact may drive: the setting shared among the
+    /// overlaps of the more crowded of its two bodies ([`push_out_share`]).
+    pub max_push: f32,
     pub points: [ConstraintPoint; MAX_POINTS],
     pub len: usize,
 }
@@ -189,6 +192,40 @@ pub struct ContactParams {
     pub damping_ratio: f32,
     /// Substep, s.
     pub h: f32,
+    /// Fastest push-out of one body, m/s (`SolverSettings::max_push_out`).
+    pub max_push_out: f32,
+}
+
+/// Overlap at spawn: a body buried in k others is pushed out by k contacts at once. If
+/// each could push at the full `max_push_out`, their pushes would add up along chains of
+/// bodies (300 boxes spawned at one point fly apart at tens of m/s). So each body's
+/// push-out is shared among its overlapping contacts: a contact may push at most
+/// `max_push_out / k` for the larger k of its two bodies. Resting contacts are barely
+/// overlapping and push far slower than any share, so they don't notice.
+pub fn push_out_share(max_push_out: f32, overlaps_a: u32, overlaps_b: u32) -> f32 {
+    max_push_out / (overlaps_a.max(overlaps_b).max(1) as f32).sqrt()
+}
+
+/// Counts, per body, the manifolds in which it overlaps something (a point with negative
+/// separation), into `counts` (one per body).
+fn count_overlaps(
+    manifolds: &[Manifold],
+    colliders: &[ColliderEntry],
+    n_bodies: usize,
+    counts: &mut Vec<u32>,
+) {
+    counts.clear();
+    counts.resize(n_bodies, 0);
+    for m in manifolds {
+        if m.points().iter().any(|p| p.separation < 0.0) {
+            for c in [m.a, m.b] {
+                let body = colliders[c as usize].body;
+                if body != STATIC {
+                    counts[body as usize] += 1;
+                }
+            }
+        }
+    }
 }
 
 /// Builds the constraint of every manifold. Returns the largest load ratio r of any
@@ -199,9 +236,18 @@ pub fn prepare_constraints(
     states: &[BodyState],
     bodies: &[SolverBody],
     stiffness: ContactParams,
+    overlaps: &mut Vec<u32>,
     out: &mut Vec<ContactConstraint>,
 ) -> f32 {
     out.clear();
+    count_overlaps(manifolds, colliders, states.len(), overlaps);
+    let count = |body: u32| {
+        if body == STATIC {
+            0
+        } else {
+            overlaps[body as usize]
+        }
+    };
     let mut max_ratio = 1.0f32;
     for (mi, m) in manifolds.iter().enumerate() {
         let (ca, cb) = (&colliders[m.a as usize], &colliders[m.b as usize]);
@@ -231,6 +277,7 @@ pub fn prepare_constraints(
             friction: if stiffness.friction { m.friction } else { 0.0 },
             restitution: m.restitution,
             softness,
+            max_push: push_out_share(stiffness.max_push_out, count(ca.body), count(cb.body)),
             points: [ConstraintPoint::default(); MAX_POINTS],
             len: m.len,
         };

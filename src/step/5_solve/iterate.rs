@@ -109,7 +109,6 @@ pub fn solve(
     bodies: &mut [SolverBody],
     constraints: &mut [ContactConstraint],
     h: f32,
-    max_push_out: f32,
     use_bias: bool,
 ) {
     let inv_h = 1.0 / h;
@@ -126,7 +125,7 @@ pub fn solve(
             } else if use_bias {
                 let soft = c.softness;
                 (
-                    (soft.bias_rate * s).max(-max_push_out),
+                    (soft.bias_rate * s).max(-c.max_push),
                     soft.mass_scale,
                     soft.impulse_scale,
                 )

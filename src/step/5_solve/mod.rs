@@ -44,6 +44,8 @@ pub struct SolverScratch {
     free: Vec<FreeStep>,
     /// Solve and relax passes per substep this step.
     iterations: u32,
+    /// Per body: how many of its manifolds overlap (for the push-out share).
+    overlaps: Vec<u32>,
 }
 
 /// Solves every contact of this step.
@@ -80,6 +82,7 @@ pub fn solve_contacts(
         max_hertz: 0.25 / h,
         damping_ratio: settings.contact_damping_ratio,
         h,
+        max_push_out: settings.max_push_out,
     };
     let run = |stage, world: &mut PhysicsWorld, scratch: &mut SolverScratch| {
         run_stage(stage, world, scratch, *integrator, &settings, &params)
@@ -118,7 +121,8 @@ fn run_stage(
         SolverStage::PrepareContacts => {
             let stiffness = *params;
             let (m, c, s) = (&world.manifolds, &world.colliders, &world.bodies);
-            let ratio = prepare_constraints(m, c, s, bodies, stiffness, &mut world.constraints);
+            let (out, overlaps) = (&mut world.constraints, &mut scratch.overlaps);
+            let ratio = prepare_constraints(m, c, s, bodies, stiffness, overlaps, out);
             scratch.iterations = iterations_for(settings.iterations, ratio);
         }
         SolverStage::IntegrateVelocities => {
@@ -136,13 +140,7 @@ fn run_stage(
         SolverStage::Solve | SolverStage::Relax => {
             let use_bias = stage == SolverStage::Solve;
             for _ in 0..iterations {
-                solve(
-                    bodies,
-                    &mut world.constraints,
-                    h,
-                    settings.max_push_out,
-                    use_bias,
-                );
+                solve(bodies, &mut world.constraints, h, use_bias);
             }
         }
         SolverStage::IntegratePositions => {
