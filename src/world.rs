@@ -118,6 +118,12 @@ pub struct PhysicsWorld {
     pub touching: bevy::platform::collections::HashSet<(Entity, Entity)>,
     /// The fixed step of the current step, seconds.
     pub dt: f32,
+    /// The contact solver's substep last step, s (0 before the first contact), which
+    /// the cached warm-start impulses are per.
+    pub last_substep: f32,
+    /// Substeps the contact solver took last step (the setting, or more for stiff
+    /// contacts).
+    pub substeps: u32,
     /// Steps taken since the plugin started.
     pub step_count: u64,
 }

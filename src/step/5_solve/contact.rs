@@ -6,6 +6,7 @@ use bevy::prelude::*;
 
 use super::iterate::row_velocity;
 use super::softness::Softness;
+use super::stiffness::{contact_softness, pair_size};
 use crate::collider::Shape;
 use crate::step::narrow_phase::{MAX_POINTS, Manifold};
 use crate::world::{BodyState, ColliderEntry, STATIC, SolverBody};
@@ -141,45 +142,6 @@ fn isotropic_tangent_mass(linear: f32, rows: &[AngularRow; 2], spin: [bool; 2]) 
     mass_of(0.5 * (k(&rows[0]) + k(&rows[1])))
 }
 
-/// Contact stiffness rule. A soft contact is a spring-damper tuned to the pair's
-/// effective mass m_eff — about the lighter body's mass. Under a load much heavier than
-/// that (a heavy box on a light one, or a light box carrying a stack) it sinks by
-/// load/(m_eff·ω²) and, worse, the heavy load rides an under-damped spring (damping ratio
-/// ζ·√(m_eff/M)) and bounces. So both follow the mass the contact carries, M: the larger
-/// of the heavier body's mass and the load last step's impulses show. With r = M/m_eff,
-/// the frequency rises by √r (capped at `max_hertz`, a quarter of the substep rate, where
-/// the soft step stays smooth) and the damping ratio by √r, which keeps the load's own
-/// damping ratio at ζ. A contact with something that cannot move starts twice as stiff.
-/// Returns the softness and r.
-pub fn contact_softness(
-    p: &ContactParams,
-    inv_mass_a: f32,
-    inv_mass_b: f32,
-    load_impulse: f32,
-) -> (Softness, f32) {
-    let (lo, hi) = (inv_mass_a.min(inv_mass_b), inv_mass_a.max(inv_mass_b));
-    if hi == 0.0 {
-        return (Softness::new(0.0, 0.0, p.h), 1.0);
-    }
-    let light = 1.0 / hi;
-    let heavy = if lo > 0.0 { 1.0 / lo } else { light };
-    let carried = if p.gravity > 0.0 {
-        load_impulse / (p.gravity * p.h)
-    } else {
-        0.0
-    };
-    let r = (heavy.max(carried) / light).max(1.0);
-    let base = if lo == 0.0 { 2.0 * p.hertz } else { p.hertz };
-    (
-        Softness::new(
-            (base * r.sqrt()).min(p.max_hertz),
-            p.damping_ratio * r.sqrt(),
-            p.h,
-        ),
-        r,
-    )
-}
-
 /// The knobs of [`prepare_constraints`]: stiffness, substep, and whether friction runs.
 #[derive(Clone, Copy, Debug)]
 pub struct ContactParams {
@@ -194,6 +156,8 @@ pub struct ContactParams {
     pub h: f32,
     /// Fastest push-out of one body, m/s (`SolverSettings::max_push_out`).
     pub max_push_out: f32,
+    /// Allowed resting sag per contact, as a fraction of the smaller body's size.
+    pub max_sag: f32,
 }
 
 /// Overlap at spawn: a body buried in k others is pushed out by k contacts at once. If
@@ -262,7 +226,8 @@ pub fn prepare_constraints(
         let (t1, t2) = m.normal.any_orthonormal_pair();
         let spin = [spins(&sa), spins(&sb)];
         let load: f32 = m.points().iter().map(|p| p.normal_impulse).sum();
-        let (softness, r) = contact_softness(&stiffness, sa.inv_mass, sb.inv_mass, load);
+        let size = pair_size(&ca.shape, &cb.shape);
+        let (softness, r) = contact_softness(&stiffness, sa.inv_mass, sb.inv_mass, load, size);
         max_ratio = max_ratio.max(r);
         let mut c = ContactConstraint {
             a: ca.body,

@@ -6,6 +6,7 @@
 mod contact;
 mod iterate;
 mod softness;
+mod stiffness;
 
 use bevy::prelude::*;
 
@@ -15,11 +16,11 @@ use crate::step::integrate::{FreeStep, Inertial, free_substep, rotate};
 use crate::world::{PhysicsWorld, STATIC};
 
 pub use contact::{
-    AngularRow, ConstraintPoint, ContactConstraint, ContactParams, contact_softness,
-    prepare_constraints,
+    AngularRow, ConstraintPoint, ContactConstraint, ContactParams, prepare_constraints,
 };
 pub use iterate::{apply_restitution, solve, warm_start};
 pub use softness::Softness;
+pub use stiffness::{Wanted, contact_softness, pair_size, substeps_for, wanted_hertz};
 
 /// The solver's stages in execution order. `PrepareContacts` runs once per step; the
 /// five substep stages run `substeps` times; `Restitution` and `StoreImpulses` once.
@@ -58,9 +59,8 @@ pub fn solve_contacts(
     mut scratch: Local<SolverScratch>,
 ) {
     let world = &mut *world;
-    let n = settings.substeps.max(1);
-    let h = world.dt / n as f32;
-    if world.manifolds.is_empty() || h <= 0.0 {
+    let dt = world.dt;
+    if world.manifolds.is_empty() || dt <= 0.0 {
         world.impulse_cache.clear();
         return;
     }
@@ -74,16 +74,34 @@ pub fn solve_contacts(
         (s.dp, s.dq, s.v, s.w) = (Vec3::ZERO, Quat::IDENTITY, b.v0, b.w0);
     }
 
-    // Stiffness capped at a quarter of the substep rate.
-    let params = ContactParams {
+    let min_substeps = settings.substeps.max(1);
+    let mut params = ContactParams {
         friction: effects.friction,
         hertz: settings.contact_hertz,
         gravity: gravity.0.length(),
-        max_hertz: 0.25 / h,
+        max_hertz: 0.0,
         damping_ratio: settings.contact_damping_ratio,
-        h,
+        h: dt / min_substeps as f32,
         max_push_out: settings.max_push_out,
+        max_sag: settings.max_sag,
     };
+    // Last step's impulses were per substep of last step's length: rescale them to this
+    // step's substep, then see how stiff the stiffest contact wants to be.
+    let n = choose_substeps(world, &params, min_substeps, settings.max_substeps);
+    params.h = dt / n as f32;
+    // Stiffness capped at a quarter of the substep rate.
+    params.max_hertz = 0.25 / params.h;
+    if world.last_substep > 0.0 && world.last_substep != params.h {
+        let scale = params.h / world.last_substep;
+        for m in world.manifolds.iter_mut() {
+            for p in m.points_mut() {
+                p.normal_impulse *= scale;
+                p.tangent_impulse *= scale;
+            }
+        }
+    }
+    world.last_substep = params.h;
+    world.substeps = n;
     let run = |stage, world: &mut PhysicsWorld, scratch: &mut SolverScratch| {
         run_stage(stage, world, scratch, *integrator, &settings, &params)
     };
@@ -160,6 +178,45 @@ fn run_stage(
         }
         SolverStage::StoreImpulses => store_impulses(world),
     }
+}
+
+/// The substeps this step needs: enough for the stiffest contact's wanted frequency
+/// (see [`stiffness`](self::stiffness)), between the setting and `max`. Loads are read
+/// from last step's impulses, taken per substep of last step's length.
+fn choose_substeps(world: &PhysicsWorld, p: &ContactParams, min: u32, max: u32) -> u32 {
+    if max <= min {
+        return min;
+    }
+    let last = if world.last_substep > 0.0 {
+        world.last_substep
+    } else {
+        p.h
+    };
+    let body = |c: u32| {
+        let body = world.colliders[c as usize].body;
+        if body == STATIC {
+            (0.0, Vec3::ZERO)
+        } else {
+            let b = &world.solver_bodies[body as usize];
+            (b.inv_mass, world.bodies[body as usize].v0)
+        }
+    };
+    // Resting: closing or parting slower than gravity changes speed in two steps.
+    let resting_speed = 2.0 * p.gravity * world.dt;
+    let mut stiffest = 0.0f32;
+    for m in &world.manifolds {
+        let load: f32 = m.points().iter().map(|p| p.normal_impulse).sum::<f32>() * p.h / last;
+        let (ca, cb) = (
+            &world.colliders[m.a as usize],
+            &world.colliders[m.b as usize],
+        );
+        let size = pair_size(&ca.shape, &cb.shape);
+        let ((ima, va), (imb, vb)) = (body(m.a), body(m.b));
+        let resting = m.normal.dot(vb - va).abs() <= resting_speed;
+        let wanted = wanted_hertz(p, ima, imb, load, size, resting);
+        stiffest = stiffest.max(wanted.needed);
+    }
+    substeps_for(stiffest, world.dt, min, max)
 }
 
 /// Gauss–Seidel converges in about r iterations' worth of sweeps on a light body squeezed

@@ -1,0 +1,174 @@
+//! How stiff each contact is, and how many substeps that takes.
+//!
+//! A soft contact is a spring-damper tuned to the pair's effective mass m_eff — about the
+//! lighter body's mass. Resting under a load of mass M it sinks by r·g/ω² (r = M/m_eff,
+//! ω = 2πf), whatever the bodies' size. Two things follow:
+//! - **Heavy loads** (a heavy box on a light one, a light box carrying a stack): the
+//!   frequency rises by √r and the damping ratio by √r, which keeps the load's own
+//!   damping ratio at ζ (without it the load rides an under-damped spring and bounces).
+//! - **Small bodies**: a fixed sag is a large fraction of a small body (0.3 mm is 1.5 % of
+//!   a 2 cm cube). So each contact also asks for the frequency that holds its sag to
+//!   `max_sag` of the smaller body's size: f ≥ √(r·g / (max_sag·L)) / 2π.
+//!
+//! The soft step stays smooth up to a quarter of the substep rate, so a contact's
+//! frequency is capped there — and when a scene's contacts ask for more (a 1000:1 load, a
+//! stack of centimetre cubes), the step takes more substeps, up to `max_substeps`. Scenes
+//! without such contacts keep the configured substeps and pay nothing.
+
+use std::f32::consts::TAU;
+
+use crate::collider::Shape;
+
+use super::contact::ContactParams;
+use super::softness::Softness;
+
+/// The most load, in multiples of the lighter body, that the sag rule reads from a
+/// contact's impulses (its own mass ratio counts in full). A five-high stack of
+/// centimetre cubes is within it; a pile of 2,000 half-metre balls, whose bottom
+/// contacts carry fifty, is not, and keeps the configured substeps.
+pub const STACK_LOAD: f32 = 8.0;
+
+/// The size that sets a contact's allowed sag: the smaller of the two shapes' smallest
+/// dimension (a sphere's diameter, a box's thinnest side); a plane has none.
+pub fn pair_size(a: &Shape, b: &Shape) -> f32 {
+    let size = |s: &Shape| match *s {
+        Shape::Sphere { radius } => 2.0 * radius,
+        Shape::Cuboid { half_extents } => 2.0 * half_extents.min_element(),
+        Shape::Plane { .. } => f32::INFINITY,
+    };
+    size(a).min(size(b))
+}
+
+/// What one contact asks of the solver.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Wanted {
+    /// The frequency it would like, Hz, before the cap: the larger of the load rule
+    /// (base·√r) and the sag rule.
+    pub hertz: f32,
+    /// The frequency its sag needs, Hz: the least the cap may be for it. Only this one
+    /// raises the substep count; the load rule's √r is content with the cap.
+    pub needed: f32,
+    /// The load ratio r.
+    pub ratio: f32,
+}
+
+/// The load ratio r of a contact and the frequencies it asks for. `load_impulse` is last
+/// step's total normal impulse per substep of `p.h`; `resting`: the pair is not closing
+/// or parting fast (an impact's impulse is not a load).
+pub fn wanted_hertz(
+    p: &ContactParams,
+    inv_mass_a: f32,
+    inv_mass_b: f32,
+    load_impulse: f32,
+    size: f32,
+    resting: bool,
+) -> Wanted {
+    let (lo, hi) = (inv_mass_a.min(inv_mass_b), inv_mass_a.max(inv_mass_b));
+    if hi == 0.0 {
+        return Wanted {
+            hertz: 0.0,
+            needed: 0.0,
+            ratio: 1.0,
+        };
+    }
+    let light = 1.0 / hi;
+    let heavy = if lo > 0.0 { 1.0 / lo } else { light };
+    let carried = if p.gravity > 0.0 {
+        load_impulse / (p.gravity * p.h)
+    } else {
+        0.0
+    };
+    let r = (heavy.max(carried) / light).max(1.0);
+    let base = if lo == 0.0 { 2.0 * p.hertz } else { p.hertz };
+    // The sag rule reads the load its impulses show only for a resting contact (an
+    // impact's impulse looks like a huge load for one step, and would buy substeps for
+    // nothing), and only up to STACK_LOAD: deep piles share their load and sag more.
+    let shown = if resting { r.min(STACK_LOAD) } else { 1.0 };
+    let resting_load = (heavy / light).max(shown);
+    let by_size = (resting_load * p.gravity / (p.max_sag * size)).sqrt() / TAU;
+    let needed = if by_size.is_finite() { by_size } else { 0.0 };
+    Wanted {
+        hertz: (base * r.sqrt()).max(needed),
+        needed,
+        ratio: r,
+    }
+}
+
+/// The contact's softness (its wanted frequency capped at `max_hertz`) and its load
+/// ratio r.
+pub fn contact_softness(
+    p: &ContactParams,
+    inv_mass_a: f32,
+    inv_mass_b: f32,
+    load_impulse: f32,
+    size: f32,
+) -> (Softness, f32) {
+    let w = wanted_hertz(p, inv_mass_a, inv_mass_b, load_impulse, size, true);
+    if w.hertz == 0.0 {
+        return (Softness::new(0.0, 0.0, p.h), w.ratio);
+    }
+    let zeta = p.damping_ratio * w.ratio.sqrt();
+    (Softness::new(w.hertz.min(p.max_hertz), zeta, p.h), w.ratio)
+}
+
+/// Substeps for a step of `dt` s whose stiffest contact wants `hertz`: enough that a
+/// quarter of the substep rate reaches it, never fewer than `min`, never more than `max`.
+pub fn substeps_for(hertz: f32, dt: f32, min: u32, max: u32) -> u32 {
+    // A saturating cast: NaN gives 0 (then `min`), ∞ gives u32::MAX (then `max`).
+    let wanted = (4.0 * hertz * dt).ceil() as u32;
+    wanted.clamp(min, max.max(min))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn params(h: f32) -> ContactParams {
+        ContactParams {
+            friction: true,
+            hertz: 30.0,
+            max_hertz: 0.25 / h,
+            gravity: 9.81,
+            damping_ratio: 10.0,
+            h,
+            max_push_out: 3.0,
+            max_sag: 0.005,
+        }
+    }
+
+    #[test]
+    fn a_one_metre_box_on_the_floor_asks_for_no_more_than_the_default() {
+        let p = params(1.0 / 240.0);
+        let w = wanted_hertz(&p, 0.0, 1.0, 9.81 / 240.0, 1.0, true);
+        assert!((w.ratio - 1.0).abs() < 1e-5);
+        // Static contact: twice the base frequency; the sag rule needs 7 Hz.
+        assert_eq!(w.hertz, 60.0);
+        assert!(w.needed < 16.0, "{}", w.needed);
+        assert_eq!(substeps_for(w.needed, 1.0 / 60.0, 4, 16), 4);
+    }
+
+    #[test]
+    fn the_sag_a_contact_is_tuned_for_is_max_sag_of_its_size() {
+        // Sag r·g/ω² at the wanted frequency, for a heavy load and for small bodies.
+        let p = params(1.0 / 240.0);
+        for (inv_a, inv_b, size) in [(1.0, 1e-3, 1.0), (0.0, 1.0 / 8e-3, 0.02)] {
+            let w = wanted_hertz(&p, inv_a, inv_b, 0.0, size, true);
+            let omega = TAU * w.needed.min(w.hertz);
+            let sag = w.ratio * 9.81 / (omega * omega);
+            assert!(
+                sag <= p.max_sag * size * 1.0001,
+                "sag {sag} for size {size}"
+            );
+        }
+    }
+
+    #[test]
+    fn substeps_follow_the_stiffest_contact_within_bounds() {
+        let dt = 1.0 / 60.0;
+        assert_eq!(substeps_for(0.0, dt, 4, 16), 4);
+        assert_eq!(substeps_for(223.0, dt, 4, 16), 15);
+        assert_eq!(substeps_for(1e9, dt, 4, 16), 16);
+        assert_eq!(substeps_for(f32::NAN, dt, 4, 16), 4);
+        assert_eq!(substeps_for(1e9, dt, 8, 4), 8);
+    }
+}
