@@ -151,7 +151,8 @@ impl SolverSettings {
     /// refused but clamped ([`clamp_counts`](Self::clamp_counts)).
     pub fn check(&self) -> Result<(), Invalid> {
         use limits::{MAX_COEFFICIENT, MAX_RATE, MAX_SIZE, MAX_SPEED, positive, scalar};
-        positive("contact_hertz", self.contact_hertz, MAX_RATE)?;
+        // Stiffness below 0.1 Hz or a speed cap below 1 m/s are not a contact or a cap.
+        scalar("contact_hertz", self.contact_hertz, 0.1..=MAX_RATE)?;
         scalar(
             "contact_damping_ratio",
             self.contact_damping_ratio,
@@ -168,7 +169,7 @@ impl SolverSettings {
             self.speculative_margin,
             0.0..=MAX_SIZE,
         )?;
-        positive("max_linear_speed", self.max_linear_speed, MAX_SPEED)?;
+        scalar("max_linear_speed", self.max_linear_speed, 1.0..=MAX_SPEED)?;
         positive("max_sag", self.max_sag, 1.0)?;
         Ok(())
     }

@@ -19,7 +19,11 @@ pub fn validate(
     if !tf.translation.is_finite() {
         return Err(("Transform.translation", format!("{}", tf.translation)));
     }
-    if !tf.rotation.is_finite() || tf.rotation.length_squared() < 1e-12 {
+    // Normalisable: finite components whose squared length neither overflows nor
+    // vanishes (a (1e30, 0, 0, 1) quaternion overflows to a length of ∞ and would
+    // normalise to zero).
+    let len2 = tf.rotation.length_squared();
+    if !tf.rotation.is_finite() || !len2.is_finite() || len2 < 1e-12 {
         return Err(("Transform.rotation", format!("{:?}", tf.rotation)));
     }
     if !vel.linear.is_finite() {
@@ -113,8 +117,9 @@ pub(super) fn validate_mass_properties(
         ));
     }
     if !(ok(inertia.x) && ok(inertia.y) && ok(inertia.z)) {
+        // With a usable mass, only the shape's size can make the inertia unusable.
         return Err((
-            field,
+            "Collider",
             format!("inertia {inertia} kg·m² is not finite and positive (mass {mass} kg)"),
         ));
     }
