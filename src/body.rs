@@ -119,6 +119,13 @@ pub struct PhysicsRejected {
 #[derive(Component, Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Sleeping;
 
+/// Tumble's bookkeeping: when this collider first appeared, counting every collider
+/// ever added. The step visits pairs of colliders in this order, so the physics of a
+/// scene does not depend on where its entities sit in the ECS tables, on recycled entity
+/// ids, or on what else was spawned and despawned meanwhile. Added by tumble.
+#[derive(Component, Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct SpawnOrder(pub u64);
+
 /// How long (s) a body has been slow enough to sleep. Kept by tumble.
 #[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq)]
 #[reflect(Component)]

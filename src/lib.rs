@@ -24,6 +24,7 @@ pub mod limits;
 pub mod plugin;
 pub mod scene;
 pub mod settings;
+pub mod state_hash;
 pub mod step;
 #[cfg(feature = "study")]
 pub mod study;

@@ -63,7 +63,9 @@ impl Plugin for TumblePlugin {
             .init_resource::<StepTimings>()
             .init_resource::<crate::PhysicsWorld>()
             .init_resource::<prepare::PendingRechecks>()
+            .init_resource::<prepare::SpawnCounter>()
             .add_observer(prepare::record_removal)
+            .add_observer(prepare::number_collider)
             .add_message::<events::CollisionStarted>()
             .add_message::<events::CollisionEnded>();
         app.register_type::<RigidBody>()

@@ -75,6 +75,9 @@ impl BodyState {
 #[derive(Clone, Copy, Debug)]
 pub struct ColliderEntry {
     pub entity: Entity,
+    /// The collider's [`SpawnOrder`](crate::body::SpawnOrder): pairs are visited in this
+    /// order, whatever the ECS's.
+    pub key: u64,
     /// Index into the body arrays, or [`STATIC`].
     pub body: u32,
     /// A sleeping body, standing in as a static collider this step.

@@ -41,6 +41,7 @@ fn scene(seed: u64) -> Vec<ColliderEntry> {
             };
             ColliderEntry {
                 entity: Entity::PLACEHOLDER,
+                key: i as u64,
                 body,
                 asleep: false,
                 shape,

@@ -14,8 +14,11 @@ const PERIOD: f32 = 0.9080;
 
 struct Run {
     flips: Vec<f32>,
+    /// The largest |ΔL|/L and |ΔE|/E over every step.
     l_drift: f32,
     e_drift: f32,
+    /// (E − E0)/E0 after the last step.
+    e_final: f32,
 }
 
 fn spin(integrator: Integrator) -> Run {
@@ -38,12 +41,14 @@ fn spin(integrator: Integrator) -> Run {
         flips: Vec::new(),
         l_drift: 0.0,
         e_drift: 0.0,
+        e_final: 0.0,
     };
     for k in 1..=600 {
         step(&mut app, 1);
         let (l, e, wz) = invariants(&app);
         run.l_drift = run.l_drift.max((l - l0).abs() / l0);
-        run.e_drift = (e - e0) / e0;
+        run.e_drift = run.e_drift.max((e - e0).abs() / e0);
+        run.e_final = (e - e0) / e0;
         if wz.signum() != prev.signum() {
             // Interpolate the zero crossing inside the step.
             run.flips.push((k as f32 - 1.0 + prev / (prev - wz)) * H);
@@ -53,10 +58,12 @@ fn spin(integrator: Integrator) -> Run {
     let mean = (run.flips.last().unwrap_or(&0.0) - run.flips.first().unwrap_or(&0.0))
         / (run.flips.len().max(2) - 1) as f32;
     eprintln!(
-        "{integrator:?}: {} flips, mean interval {mean:.4} s, |L| drift {:.2e}, energy drift {:+.2e}",
+        "{integrator:?}: {} flips, mean interval {mean:.4} s, max |L| drift {:.2e}, max energy \
+         drift {:.2e}, final {:+.2e}",
         run.flips.len(),
         run.l_drift,
-        run.e_drift
+        run.e_drift,
+        run.e_final
     );
     run
 }
@@ -80,13 +87,17 @@ fn semi_implicit_and_rk4_flip_on_time_and_keep_energy() {
             (mean - PERIOD).abs() < 0.01 * PERIOD,
             "{integrator:?}: interval {mean}"
         );
+        // Bound on the worst step: the implicit midpoint rule conserves |L| and E (quadratic
+        // invariants of torque-free motion) exactly, so only its two-iteration Newton solve
+        // and f32 round-off remain (2,400 substeps × ~6e-8 ≈ 1.4e-4); RK4's local error is
+        // O((|ω|·hs)⁵) = (10/240)⁵ ≈ 1.3e-7 a substep, ≤ 3e-4 over 2,400 substeps.
         assert!(
             run.l_drift < 1e-3,
             "{integrator:?}: |L| drift {}",
             run.l_drift
         );
         assert!(
-            run.e_drift.abs() < 1e-3,
+            run.e_drift < 1e-3,
             "{integrator:?}: energy drift {}",
             run.e_drift
         );
@@ -97,8 +108,8 @@ fn semi_implicit_and_rk4_flip_on_time_and_keep_energy() {
 fn explicit_euler_gains_energy() {
     let run = spin(Integrator::ExplicitEuler);
     assert!(
-        run.e_drift > 0.05,
+        run.e_final > 0.05,
         "explicit Euler energy drift {}",
-        run.e_drift
+        run.e_final
     );
 }

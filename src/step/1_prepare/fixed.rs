@@ -23,7 +23,7 @@ use bevy::ecs::query::QueryData;
 use bevy::prelude::*;
 
 use super::lifecycle::PendingRechecks;
-use super::{fixed_entry, reject, validate_static};
+use super::{fixed_entry, order_key, reject, validate_static};
 use crate::body::*;
 use crate::collider::Collider;
 use crate::effects::Effects;
@@ -46,6 +46,7 @@ pub struct FixedItem {
     sleeping: Has<Sleeping>,
     marked: Has<InFixedSet>,
     rejected: Has<PhysicsRejected>,
+    order: Option<&'static SpawnOrder>,
 }
 
 /// Marked entities with a change that may move them, resize them or wake them.
@@ -163,8 +164,8 @@ pub fn sync_fixed_set(
         match item.collider {
             Some(c) => match validate_static(item.transform, c, item.friction, item.restitution) {
                 Ok(()) => {
-                    let entry =
-                        fixed_entry(entity, item.transform, c, item.friction, item.restitution);
+                    let (tf, key) = (item.transform, order_key(entity, item.order));
+                    let entry = fixed_entry(entity, key, tf, c, item.friction, item.restitution);
                     world.fixed.insert(entry(item.sleeping));
                     let new = world.fixed.get(entity).copied();
                     if let (Some(o), Some(n)) = (old, new)

@@ -35,6 +35,22 @@ pub fn record_removal(
     pending.entities.push(event.event().entity);
 }
 
+/// The next [`SpawnOrder`] to hand out.
+#[derive(Resource, Default, Debug)]
+pub struct SpawnCounter(u64);
+
+/// Observer: a collider appeared; number it in order of appearance.
+pub fn number_collider(
+    event: On<Add, Collider>,
+    mut counter: ResMut<SpawnCounter>,
+    mut commands: Commands,
+) {
+    commands
+        .entity(event.event().entity)
+        .insert(SpawnOrder(counter.0));
+    counter.0 += 1;
+}
+
 /// A rejected body whose inputs changed since it was rejected.
 type Edited = (
     With<PhysicsRejected>,

@@ -18,7 +18,9 @@ use crate::settings::SolverSettings;
 use crate::world::{BodyState, ColliderEntry, ForceModel, PhysicsWorld, STATIC, SolverBody};
 
 pub use fixed::{InFixedSet, sync_fixed_set};
-pub use lifecycle::{PendingRechecks, readmit_rejected, record_removal};
+pub use lifecycle::{
+    PendingRechecks, SpawnCounter, number_collider, readmit_rejected, record_removal,
+};
 pub use settings::{guard_fixed_rate, validate_settings};
 pub use validate::validate;
 use validate::{validate_force, validate_mass_properties, validate_scalars};
@@ -40,6 +42,7 @@ pub struct BodyItem {
     sleep_timer: Option<&'static SleepTimer>,
     gravity_scale: Option<&'static GravityScale>,
     lock_rotation: Has<LockRotation>,
+    order: Option<&'static SpawnOrder>,
 }
 
 /// Which entities prepare gathers each step: bodies that are not asleep, not already in
@@ -80,7 +83,8 @@ pub fn prepare_bodies(
         if kind == RigidBody::Static {
             commands.entity(entity).insert(InFixedSet);
             if let Some(c) = item.collider {
-                let entry = fixed_entry(entity, &tf, c, item.friction, item.restitution);
+                let key = order_key(entity, item.order);
+                let entry = fixed_entry(entity, key, &tf, c, item.friction, item.restitution);
                 match validate_static(&tf, c, item.friction, item.restitution) {
                     Ok(()) => world.fixed.insert(entry(false)),
                     Err(e) => reject(&mut commands, entity, e),
@@ -132,6 +136,7 @@ pub fn prepare_bodies(
         if let Some(shape) = shape {
             world.colliders.push(ColliderEntry {
                 entity,
+                key: order_key(entity, item.order),
                 body: index,
                 asleep: false,
                 shape,
@@ -144,6 +149,12 @@ pub fn prepare_bodies(
             });
         }
     }
+}
+
+/// A collider's place in the step's canonical order: its [`SpawnOrder`] (every collider
+/// gets one when it appears; the entity's bits stand in until then).
+fn order_key(entity: Entity, order: Option<&SpawnOrder>) -> u64 {
+    order.map_or(u64::MAX - entity.to_bits(), |o| o.0)
 }
 
 /// A static collider's input: its pose, shape and material.
@@ -170,6 +181,7 @@ fn reject(commands: &mut Commands, entity: Entity, (field, reason): (&'static st
 /// A fixed-set entry for a collider at `tf`, given whether it is asleep.
 fn fixed_entry(
     entity: Entity,
+    key: u64,
     tf: &Transform,
     collider: &Collider,
     friction: Option<&Friction>,
@@ -177,6 +189,7 @@ fn fixed_entry(
 ) -> impl Fn(bool) -> ColliderEntry {
     let entry = ColliderEntry {
         entity,
+        key,
         body: STATIC,
         asleep: false,
         shape: collider.shape,

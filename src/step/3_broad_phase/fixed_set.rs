@@ -167,6 +167,7 @@ mod tests {
     fn entry(entity: u32, collider: Collider, pos: Vec3) -> ColliderEntry {
         ColliderEntry {
             entity: Entity::from_raw_u32(entity).unwrap(),
+            key: entity as u64,
             body: 0,
             asleep: false,
             shape: collider.shape,

@@ -73,9 +73,7 @@ pub fn find_pairs(
             world.pairs.push((ci as u32, *slot));
         }
     }
-    if world.colliders.len() > awake {
-        world.pairs.sort_unstable();
-    }
+    canonical_order(&world.colliders, &mut world.pairs);
     if full && !scratch.capped {
         warn!(
             "tumble: more than {cap} overlapping pairs this step (a pile spawned into one \
@@ -83,6 +81,20 @@ pub fn find_pairs(
         );
     }
     scratch.capped = full;
+}
+
+/// Puts the pairs in the order of their colliders' spawn order keys, each pair with the
+/// lower key first, so the narrow phase and the solver visit the same contacts in the
+/// same order whatever the ECS's table order, the entity ids and the fixed set's
+/// internal order are (they change as unrelated bodies come and go).
+pub fn canonical_order(colliders: &[ColliderEntry], pairs: &mut [(u32, u32)]) {
+    let key = |i: u32| colliders[i as usize].key;
+    for p in pairs.iter_mut() {
+        if key(p.0) > key(p.1) {
+            *p = (p.1, p.0);
+        }
+    }
+    pairs.sort_unstable_by_key(|&(a, b)| (key(a), key(b)));
 }
 
 /// Bounds over the start and free-end poses, fattened by `margin`.

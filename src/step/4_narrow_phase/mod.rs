@@ -146,7 +146,8 @@ fn coincident_nudge(a: &ColliderEntry, b: &ColliderEntry) -> Option<Vec3> {
     if !scale.is_finite() || a.pos.distance_squared(b.pos) > scale * scale {
         return None;
     }
-    let mut h = a.entity.to_bits() ^ b.entity.to_bits().rotate_left(32);
+    // Keyed by spawn order, not entity ids: a recycled id must not change the direction.
+    let mut h = a.key ^ b.key.rotate_left(32);
     let mut next = || {
         h = h.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = h;

@@ -162,16 +162,23 @@ pub struct ContactParams {
 
 /// Overlap at spawn: a body buried in k others is pushed out by k contacts at once. If
 /// each could push at the full `max_push_out`, their pushes would add up along chains of
-/// bodies (300 boxes spawned at one point fly apart at tens of m/s). So each body's
-/// push-out is shared among its overlapping contacts: a contact may push at most
-/// `max_push_out / k` for the larger k of its two bodies. Resting contacts are barely
+/// bodies (300 boxes spawned at one point flew apart at 73 m/s). So each body's push-out
+/// is shared among its overlapping contacts: a contact may push at most
+/// `max_push_out / k^0.6` for the larger k of its two bodies. Measured on 300 boxes at
+/// one point in zero g, five different spawn orders: k^0.6 peaks at 2.1–2.7 m/s for a
+/// 3 m/s limit and parts the pile in 2.9 s; √k peaked at 3.8–4.0 m/s (chains of pushes
+/// still add up); 1/k was still parting it after 10 s. Resting contacts are barely
 /// overlapping and push far slower than any share, so they don't notice.
+pub const PUSH_OUT_SHARE_EXPONENT: f32 = 0.6;
+
+/// The fastest push-out one contact may drive, given how many overlapping contacts each
+/// of its bodies has (see [`PUSH_OUT_SHARE_EXPONENT`]).
 pub fn push_out_share(max_push_out: f32, overlaps_a: u32, overlaps_b: u32) -> f32 {
-    max_push_out / (overlaps_a.max(overlaps_b).max(1) as f32).sqrt()
+    max_push_out / (overlaps_a.max(overlaps_b).max(1) as f32).powf(PUSH_OUT_SHARE_EXPONENT)
 }
 
-/// Counts, per body, the manifolds in which it overlaps something (a point with negative
-/// separation), into `counts` (one per body).
+/// Counts, per body, the manifolds in which it overlaps another moving body (a point with
+/// negative separation), into `counts` (one per body).
 fn count_overlaps(
     manifolds: &[Manifold],
     colliders: &[ColliderEntry],
@@ -181,13 +188,10 @@ fn count_overlaps(
     counts.clear();
     counts.resize(n_bodies, 0);
     for m in manifolds {
-        if m.points().iter().any(|p| p.separation < 0.0) {
-            for c in [m.a, m.b] {
-                let body = colliders[c as usize].body;
-                if body != STATIC {
-                    counts[body as usize] += 1;
-                }
-            }
+        let (a, b) = (colliders[m.a as usize].body, colliders[m.b as usize].body);
+        if a != STATIC && b != STATIC && m.points().iter().any(|p| p.separation < 0.0) {
+            counts[a as usize] += 1;
+            counts[b as usize] += 1;
         }
     }
 }
@@ -242,7 +246,12 @@ pub fn prepare_constraints(
             friction: if stiffness.friction { m.friction } else { 0.0 },
             restitution: m.restitution,
             softness,
-            max_push: push_out_share(stiffness.max_push_out, count(ca.body), count(cb.body)),
+            // A static side cannot pass a push along, so it pushes at the full limit.
+            max_push: if ca.body == STATIC || cb.body == STATIC {
+                stiffness.max_push_out
+            } else {
+                push_out_share(stiffness.max_push_out, count(ca.body), count(cb.body))
+            },
             points: [ConstraintPoint::default(); MAX_POINTS],
             len: m.len,
         };
