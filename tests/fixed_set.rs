@@ -2,23 +2,45 @@
 //! gathered every step, and are looked at again only when they change. These tests make
 //! sure every kind of change still reaches the simulation on the next step: a static that
 //! is moved, despawned, spawned late or turned dynamic in place, and sleepers woken by
-//! switching sleeping off.
+//! switching sleeping off. Each case runs under every pacing of `Pacing::GAME` (under a
+//! 240 Hz render the change lands on a frame that runs no step), with sleeping on and off
+//! unless sleeping is what it tests, and must give bit-identical physics under all.
 
 mod common;
 use bevy::prelude::*;
 use common::*;
 use tumble::prelude::*;
 
-const G: f32 = 9.81;
+/// Runs `case` under every pacing in `Pacing::GAME` for each sleeping setting in
+/// `sleeping`, and checks the final poses and velocities are bit-identical across
+/// pacings (sleeping on and off are not compared with each other: a sleeper is frozen).
+fn under_every_pacing(sleeping: &[bool], case: impl Fn(&mut App, bool, Pacing)) {
+    for &sleeping in sleeping {
+        let mut reference = None;
+        for pacing in Pacing::GAME {
+            let mut app = paced_app(pacing, sleeping);
+            case(&mut app, sleeping, pacing);
+            let snap: Vec<_> = snapshot(&mut app).into_iter().map(|(_, s)| s).collect();
+            match &reference {
+                None => reference = Some(snap),
+                Some(r) => assert!(
+                    *r == snap,
+                    "{pacing:?} (sleeping {sleeping}) differs from one step per update"
+                ),
+            }
+        }
+    }
+}
 
 /// Distance fallen from rest after `t` s, with the bound on the semi-implicit error
 /// (½·g·hs·t, hs = h/4) doubled, plus 1 mm for the start of the fall inside a step.
-fn assert_free_fall(drop: f32, t: f32) {
+#[track_caller]
+fn assert_free_fall(drop: f32, t: f32, what: &str) {
     let exact = 0.5 * G * t * t;
     let bound = G * (H / 4.0) * t + 1e-3;
     assert!(
         (drop - exact).abs() < bound,
-        "fell {drop} m in {t} s, free fall is {exact} ± {bound}"
+        "{what}: fell {drop} m in {t} s, free fall is {exact} ± {bound}"
     );
 }
 
@@ -34,115 +56,131 @@ fn floor(app: &mut App, kind: Option<RigidBody>) -> Entity {
     e.id()
 }
 
-fn resting_ball(app: &mut App) -> Entity {
+/// A unit ball resting on the floor for 30 steps (0.5 s, the time to sleep: asleep by
+/// then when sleeping is on, so the change that follows must wake it).
+fn resting_ball(app: &mut App, sleeping: bool, what: &str) -> Entity {
     let b = ball(app, 0.5, 1.0, Vec3::new(0.0, 0.5, 0.0), Vec3::ZERO);
     step(app, 30);
-    assert!((pos(app, b).y - 0.5).abs() < 2e-3, "rests on the floor");
+    assert!(
+        (pos(app, b).y - 0.5).abs() < 2e-3,
+        "{what}: rests on the floor"
+    );
+    assert_eq!(
+        asleep(app, b),
+        sleeping,
+        "{what}: asleep iff sleeping is on"
+    );
     b
 }
 
 #[test]
 fn a_static_floor_moved_down_lets_the_ball_fall_freely() {
     for kind in [None, Some(RigidBody::Static)] {
-        let mut app = app();
-        let f = floor(&mut app, kind);
-        let b = resting_ball(&mut app);
-        let y0 = pos(&app, b).y;
-        app.world_mut()
-            .get_mut::<Transform>(f)
-            .unwrap()
-            .translation
-            .y = -5.5;
-        step(&mut app, 30);
-        assert_free_fall(y0 - pos(&app, b).y, 0.5);
+        under_every_pacing(&[false, true], |app, sleeping, pacing| {
+            let what = format!("{kind:?} {pacing:?} sleeping {sleeping}");
+            let f = floor(app, kind);
+            let b = resting_ball(app, sleeping, &what);
+            let y0 = pos(app, b).y;
+            app.world_mut()
+                .get_mut::<Transform>(f)
+                .unwrap()
+                .translation
+                .y = -5.5;
+            step(app, 30);
+            assert_free_fall(y0 - pos(app, b).y, 0.5, &what);
+        });
     }
 }
 
 #[test]
 fn a_static_floor_moved_up_lifts_the_ball() {
-    let mut app = app();
-    let f = floor(&mut app, None);
-    let b = resting_ball(&mut app);
-    app.world_mut()
-        .get_mut::<Transform>(f)
-        .unwrap()
-        .translation
-        .y = -0.2;
-    step(&mut app, 60);
-    assert!(
-        (pos(&app, b).y - 0.8).abs() < 5e-3,
-        "the ball stands on the raised floor: {}",
-        pos(&app, b)
-    );
+    under_every_pacing(&[false, true], |app, sleeping, pacing| {
+        let f = floor(app, None);
+        let b = resting_ball(app, sleeping, &format!("{pacing:?} sleeping {sleeping}"));
+        app.world_mut()
+            .get_mut::<Transform>(f)
+            .unwrap()
+            .translation
+            .y = -0.2;
+        step(app, 60);
+        assert!(
+            (pos(app, b).y - 0.8).abs() < 5e-3,
+            "{pacing:?} sleeping {sleeping}: the ball stands on the raised floor: {}",
+            pos(app, b)
+        );
+    });
 }
 
 #[test]
 fn a_despawned_floor_lets_the_ball_fall_freely() {
-    let mut app = app();
-    let f = floor(&mut app, None);
-    let b = resting_ball(&mut app);
-    let y0 = pos(&app, b).y;
-    app.world_mut().despawn(f);
-    step(&mut app, 30);
-    assert_free_fall(y0 - pos(&app, b).y, 0.5);
+    under_every_pacing(&[false, true], |app, sleeping, pacing| {
+        let what = format!("{pacing:?} sleeping {sleeping}");
+        let f = floor(app, None);
+        let b = resting_ball(app, sleeping, &what);
+        let y0 = pos(app, b).y;
+        app.world_mut().despawn(f);
+        step(app, 30);
+        assert_free_fall(y0 - pos(app, b).y, 0.5, &what);
+    });
 }
 
 #[test]
 fn a_floor_spawned_under_a_falling_ball_catches_it() {
-    let mut app = app();
-    let b = ball(&mut app, 0.5, 1.0, Vec3::new(0.0, 3.0, 0.0), Vec3::ZERO);
-    step(&mut app, 10);
-    floor(&mut app, Some(RigidBody::Static));
-    step(&mut app, 90);
-    assert!((pos(&app, b).y - 0.5).abs() < 5e-3, "{}", pos(&app, b));
+    under_every_pacing(&[false, true], |app, sleeping, pacing| {
+        let b = ball(app, 0.5, 1.0, Vec3::new(0.0, 3.0, 0.0), Vec3::ZERO);
+        step(app, 10);
+        floor(app, Some(RigidBody::Static));
+        step(app, 90);
+        assert!(
+            (pos(app, b).y - 0.5).abs() < 5e-3,
+            "{pacing:?} sleeping {sleeping}: {}",
+            pos(app, b)
+        );
+    });
 }
 
 #[test]
 fn a_static_box_made_dynamic_in_place_falls() {
-    let mut app = app();
-    let e = app
-        .world_mut()
-        .spawn((
-            RigidBody::Static,
-            Collider::cuboid(0.5, 0.5, 0.5),
-            Transform::from_xyz(0.0, 10.0, 0.0),
-        ))
-        .id();
-    step(&mut app, 10);
-    assert_eq!(pos(&app, e).y, 10.0, "static stays");
-    *app.world_mut().get_mut::<RigidBody>(e).unwrap() = RigidBody::Dynamic;
-    step(&mut app, 30);
-    assert_free_fall(10.0 - pos(&app, e).y, 0.5);
+    under_every_pacing(&[false, true], |app, sleeping, pacing| {
+        let what = format!("{pacing:?} sleeping {sleeping}");
+        let e = app
+            .world_mut()
+            .spawn((
+                RigidBody::Static,
+                Collider::cuboid(0.5, 0.5, 0.5),
+                Transform::from_xyz(0.0, 10.0, 0.0),
+            ))
+            .id();
+        step(app, 10);
+        assert_eq!(pos(app, e).y, 10.0, "{what}: static stays");
+        *app.world_mut().get_mut::<RigidBody>(e).unwrap() = RigidBody::Dynamic;
+        step(app, 30);
+        assert_free_fall(10.0 - pos(app, e).y, 0.5, &what);
+    });
 }
 
 #[test]
 fn switching_sleeping_off_wakes_a_stack_that_then_falls_with_its_floor() {
-    let mut app = app_with_sleeping();
-    let f = floor(&mut app, None);
-    let boxes: Vec<Entity> = (0..3)
-        .map(|i| {
-            cuboid(
-                &mut app,
-                Vec3::splat(0.5),
-                1.0,
-                Vec3::new(0.0, 0.5 + i as f32, 0.0),
-            )
-        })
-        .collect();
-    step(&mut app, 150);
-    assert!(
-        boxes
-            .iter()
-            .all(|&b| app.world().get::<Sleeping>(b).is_some())
-    );
-    let y0 = pos(&app, boxes[0]).y;
-    app.world_mut().resource_mut::<Effects>().sleeping = false;
-    app.world_mut().despawn(f);
-    step(&mut app, 30);
-    assert!(
-        boxes
-            .iter()
-            .all(|&b| app.world().get::<Sleeping>(b).is_none())
-    );
-    assert_free_fall(y0 - pos(&app, boxes[0]).y, 0.5);
+    // Starts with sleeping on: switching it off is the thing under test.
+    under_every_pacing(&[true], |app, _, pacing| {
+        let f = floor(app, None);
+        let boxes: Vec<Entity> = (0..3)
+            .map(|i| {
+                cuboid(
+                    app,
+                    Vec3::splat(0.5),
+                    1.0,
+                    Vec3::new(0.0, 0.5 + i as f32, 0.0),
+                )
+            })
+            .collect();
+        step(app, 150);
+        assert!(boxes.iter().all(|&b| asleep(app, b)), "{pacing:?}: asleep");
+        let y0 = pos(app, boxes[0]).y;
+        app.world_mut().resource_mut::<Effects>().sleeping = false;
+        app.world_mut().despawn(f);
+        step(app, 30);
+        assert!(boxes.iter().all(|&b| !asleep(app, b)), "{pacing:?}: awake");
+        assert_free_fall(y0 - pos(app, boxes[0]).y, 0.5, &format!("{pacing:?}"));
+    });
 }

@@ -83,8 +83,8 @@ pub fn find_pairs(
     scratch.capped = full;
 }
 
-/// Puts the pairs in the order of their colliders' spawn order keys, each pair with the
-/// lower key first, so the narrow phase and the solver visit the same contacts in the
+/// Puts the pairs in the order of their colliders' spawn order keys (pairs with a fixed
+/// collider after the others), each pair with the lower key first, so the narrow phase and the solver visit the same contacts in the
 /// same order whatever the ECS's table order, the entity ids and the fixed set's
 /// internal order are (they change as unrelated bodies come and go).
 pub fn canonical_order(colliders: &[ColliderEntry], pairs: &mut [(u32, u32)]) {
@@ -94,7 +94,11 @@ pub fn canonical_order(colliders: &[ColliderEntry], pairs: &mut [(u32, u32)]) {
             *p = (p.1, p.0);
         }
     }
-    pairs.sort_unstable_by_key(|&(a, b)| (key(a), key(b)));
+    // Pairs with something fixed (static or asleep) go last: in each Gauss–Seidel pass
+    // the last word is then the world's, so a light body squeezed between a heavy one
+    // and a wall is pushed back out of the wall rather than into it.
+    let fixed = |i: u32| colliders[i as usize].body == STATIC;
+    pairs.sort_unstable_by_key(|&(a, b)| (fixed(a) || fixed(b), key(a), key(b)));
 }
 
 /// Bounds over the start and free-end poses, fattened by `margin`.
