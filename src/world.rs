@@ -59,6 +59,9 @@ pub struct BodyState {
     pub gravity_scale: f32,
     /// No angular motion: no angular integration, zero inverse inertia.
     pub rotation_locked: bool,
+    /// A sphere (or no collider): its contact geometry does not turn with it, so its spin
+    /// is never limited (see [`MAX_ROTATION_PER_STEP`](crate::step::solve::MAX_ROTATION_PER_STEP)).
+    pub round: bool,
     /// The body touches something this step, so the solver re-integrates it with contacts.
     pub in_contact: bool,
     /// How long it has been slow enough to sleep, s.

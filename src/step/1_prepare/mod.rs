@@ -263,6 +263,7 @@ fn gather_body(b: BodyInput, settings: &SolverSettings) -> (BodyState, SolverBod
         },
         gravity_scale: b.gravity_scale,
         rotation_locked: b.rotation_locked && dynamic,
+        round: matches!(b.shape, None | Some(Shape::Sphere { .. })),
         in_contact: false,
         sleep_time: 0.0,
     };

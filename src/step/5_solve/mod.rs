@@ -148,6 +148,9 @@ fn run_stage(
             for &i in &scratch.active {
                 let (b, s) = (&world.bodies[i as usize], &mut bodies[i as usize]);
                 let q = (s.dq * b.q0).normalize();
+                if !b.round {
+                    s.w = limit_spin(s.w, world.dt);
+                }
                 let fs = free_substep(integrator, b.kind, Inertial::of(b), q, s.v, s.w, h);
                 s.v = fs.v.clamp_length_max(settings.max_linear_speed);
                 s.w = fs.w;
@@ -217,6 +220,20 @@ fn choose_substeps(world: &PhysicsWorld, p: &ContactParams, min: u32, max: u32) 
         stiffest = stiffest.max(wanted.needed);
     }
     substeps_for(stiffest, world.dt, min, max)
+}
+
+/// The most a non-round body in contact may turn in one step, rad (an eighth of a turn,
+/// Box2D's limit too). A contact's anchors and Jacobians are prepared once per step at
+/// the start pose, which holds while the body turns little; a thin rod spinning at
+/// 400 rad/s about its long axis (its inertia there is tiny, so any off-centre impulse
+/// spins it up) turned over a radian per substep, its stale contacts pushed the wrong
+/// way, and it gained 160 kJ in one step (tests/regress_thin_rod_energy.rs). Spheres are
+/// exempt: their contact point does not turn with them, and a small ball rolls fast.
+pub const MAX_ROTATION_PER_STEP: f32 = std::f32::consts::FRAC_PI_4;
+
+/// `w` limited so the body turns at most [`MAX_ROTATION_PER_STEP`] in a step of `dt` s.
+pub fn limit_spin(w: Vec3, dt: f32) -> Vec3 {
+    w.clamp_length_max(MAX_ROTATION_PER_STEP / dt)
 }
 
 /// Gauss–Seidel converges in about r iterations' worth of sweeps on a light body squeezed
