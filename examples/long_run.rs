@@ -3,6 +3,7 @@
 //! - every box stays within 1 mm of where it settled (resting bodies don't creep);
 //! - the total energy (kinetic + potential) never rises above its settled value;
 //! - the process's resident memory stays flat (no buffer grows step after step).
+//!
 //! It prints a line every simulated 6 minutes and exits non-zero if a check fails.
 //!
 //! ```sh
@@ -85,9 +86,18 @@ fn main() {
     }
     // Energy: f32 round-off of a sum of 1,000 terms of ~25 J: allow 1 mJ a body.
     let checks = [
-        (worst_drift < 1e-3, format!("max drift {:.4} mm < 1 mm", worst_drift * 1e3)),
-        (worst_gain <= 1e-3 * boxes.len() as f32, format!("energy gain {worst_gain:+.4} J ≤ 1 mJ a body")),
-        (worst_rss <= rss0 + rss0 / 20 + 1024, format!("RSS {worst_rss} KiB ≤ {rss0} KiB + 5 % + 1 MiB")),
+        (
+            worst_drift < 1e-3,
+            format!("max drift {:.4} mm < 1 mm", worst_drift * 1e3),
+        ),
+        (
+            worst_gain <= 1e-3 * boxes.len() as f32,
+            format!("energy gain {worst_gain:+.4} J ≤ 1 mJ a body"),
+        ),
+        (
+            worst_rss <= rss0 + rss0 / 20 + 1024,
+            format!("RSS {worst_rss} KiB ≤ {rss0} KiB + 5 % + 1 MiB"),
+        ),
     ];
     let mut ok = true;
     for (pass, what) in &checks {
@@ -104,13 +114,14 @@ fn position(app: &App, e: Entity) -> Vec3 {
 /// Kinetic (translation and rotation) plus potential energy, J.
 fn energy(app: &App, boxes: &[Entity]) -> f32 {
     let g = app.world().resource::<Gravity>().0;
-    let inertia = Collider::cuboid(HALF, HALF, HALF).shape.principal_inertia(1.0);
+    let inertia = Collider::cuboid(HALF, HALF, HALF)
+        .shape
+        .principal_inertia(1.0);
     boxes
         .iter()
         .map(|&b| {
             let v = app.world().get::<Velocity>(b).unwrap();
-            0.5 * v.linear.length_squared()
-                + 0.5 * inertia.x * v.angular.length_squared()
+            0.5 * v.linear.length_squared() + 0.5 * inertia.x * v.angular.length_squared()
                 - g.dot(position(app, b))
         })
         .sum()

@@ -84,7 +84,7 @@ pub fn find_pairs(
 }
 
 /// Puts the pairs in the order of their colliders' spawn order keys (pairs with a fixed
-/// collider after the others), each pair with the lower key first, so the narrow phase and the solver visit the same contacts in the
+/// collider before the others), each pair with the lower key first, so the narrow phase and the solver visit the same contacts in the
 /// same order whatever the ECS's table order, the entity ids and the fixed set's
 /// internal order are (they change as unrelated bodies come and go).
 pub fn canonical_order(colliders: &[ColliderEntry], pairs: &mut [(u32, u32)]) {
@@ -94,11 +94,11 @@ pub fn canonical_order(colliders: &[ColliderEntry], pairs: &mut [(u32, u32)]) {
             *p = (p.1, p.0);
         }
     }
-    // Pairs with something fixed (static or asleep) go last: in each Gauss–Seidel pass
-    // the last word is then the world's, so a light body squeezed between a heavy one
-    // and a wall is pushed back out of the wall rather than into it.
+    // Pairs with something fixed (static or asleep) go first, whatever was spawned
+    // first: each Gauss–Seidel pass then works up from the ground, which stacks need
+    // (the solver runs them once more at the end of the pass, see `solve_contacts`).
     let fixed = |i: u32| colliders[i as usize].body == STATIC;
-    pairs.sort_unstable_by_key(|&(a, b)| (fixed(a) || fixed(b), key(a), key(b)));
+    pairs.sort_unstable_by_key(|&(a, b)| (!(fixed(a) || fixed(b)), key(a), key(b)));
 }
 
 /// Bounds over the start and free-end poses, fattened by `margin`.
