@@ -141,31 +141,13 @@ fn overlapping(app: &App, bodies: &[Entity], specs: &[BodySpec]) -> Vec<usize> {
         .collect()
 }
 
-/// Six inward-facing planes: a closed room of half size `HALF_ROOM` centred on 0.
-fn room(app: &mut App) {
-    for n in [
-        Vec3::X,
-        Vec3::NEG_X,
-        Vec3::Y,
-        Vec3::NEG_Y,
-        Vec3::Z,
-        Vec3::NEG_Z,
-    ] {
-        let rot = Quat::from_rotation_arc(Vec3::Y, n);
-        app.world_mut().spawn((
-            Collider::plane(),
-            Transform::from_translation(-n * HALF_ROOM).with_rotation(rot),
-        ));
-    }
-}
-
 fn check_closed_room(
     specs: &[BodySpec],
     pacing: Pacing,
     sleeping: bool,
 ) -> Result<(), TestCaseError> {
     let mut app = paced_app(pacing, sleeping);
-    room(&mut app);
+    closed_room(&mut app, HALF_ROOM);
     let bodies = spawn(&mut app, specs, HALF_ROOM);
     let push = app.world().resource::<SolverSettings>().max_push_out;
     let d_max = specs

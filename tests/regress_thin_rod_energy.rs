@@ -15,20 +15,7 @@ use tumble::prelude::*;
 #[test]
 fn thin_rod_hit_by_a_ball_gains_no_energy() {
     let mut app = app();
-    for n in [
-        Vec3::X,
-        Vec3::NEG_X,
-        Vec3::Y,
-        Vec3::NEG_Y,
-        Vec3::Z,
-        Vec3::NEG_Z,
-    ] {
-        let rot = Quat::from_rotation_arc(Vec3::Y, n);
-        app.world_mut().spawn((
-            Collider::plane(),
-            Transform::from_translation(-n * 10.0).with_rotation(rot),
-        ));
-    }
+    closed_room(&mut app, 10.0);
     let r = 1.429_129_1;
     let ball_pos = Vec3::new(0.976_518_4, -0.202_311_72, -0.573_187_1) * (10.0 - r * 3f32.sqrt());
     let b = app

@@ -214,6 +214,22 @@ pub fn cuboid(app: &mut App, h: Vec3, m: f32, p: Vec3) -> Entity {
         .id()
 }
 
+/// Six inward-facing infinite planes: a closed room of half size `half` centred on 0.
+pub fn closed_room(app: &mut App, half: f32) {
+    for n in [
+        Vec3::X,
+        Vec3::NEG_X,
+        Vec3::Y,
+        Vec3::NEG_Y,
+        Vec3::Z,
+        Vec3::NEG_Z,
+    ] {
+        let rot = Quat::from_rotation_arc(Vec3::Y, n);
+        let at = Transform::from_translation(-n * half).with_rotation(rot);
+        app.world_mut().spawn((Collider::plane(), at));
+    }
+}
+
 /// Tilt of a body's local +Y away from world +Y, radians.
 pub fn tilt(app: &App, e: Entity) -> f32 {
     (rot(app, e) * Vec3::Y).angle_between(Vec3::Y)
