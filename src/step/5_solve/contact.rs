@@ -205,10 +205,22 @@ pub fn prepare_constraints(
     bodies: &[SolverBody],
     stiffness: ContactParams,
     overlaps: &mut Vec<u32>,
+    heaviest: &mut Vec<f32>,
     out: &mut Vec<ContactConstraint>,
 ) -> f32 {
     out.clear();
     count_overlaps(manifolds, colliders, states.len(), overlaps);
+    heaviest.clear();
+    heaviest.resize(states.len(), 0.0);
+    for m in manifolds {
+        let [a, b] = [m.a, m.b].map(|c| colliders[c as usize].body);
+        for (i, j) in [(a, b), (b, a)] {
+            if i != STATIC {
+                let other = mass_of(body(bodies, j).inv_mass);
+                heaviest[i as usize] = heaviest[i as usize].max(other);
+            }
+        }
+    }
     let count = |body: u32| {
         if body == STATIC {
             0
@@ -229,7 +241,22 @@ pub fn prepare_constraints(
         let (sa, sb) = (body(bodies, ca.body), body(bodies, cb.body));
         let (t1, t2) = m.normal.any_orthonormal_pair();
         let spin = [spins(&sa), spins(&sb)];
-        let load: f32 = m.points().iter().map(|p| p.normal_impulse).sum();
+        // The heaviest body touching either side (or about to) presses through it from
+        // the substep it lands; its impulses would show the load only a step late.
+        let by = [ca.body, cb.body].map(|i| {
+            if i == STATIC {
+                0.0
+            } else {
+                heaviest[i as usize]
+            }
+        });
+        let weight = by[0].max(by[1]) * stiffness.gravity * stiffness.h;
+        let load = m
+            .points()
+            .iter()
+            .map(|p| p.normal_impulse)
+            .sum::<f32>()
+            .max(weight);
         let size = pair_size(&ca.shape, &cb.shape);
         let (softness, r) = contact_softness(&stiffness, sa.inv_mass, sb.inv_mass, load, size);
         max_ratio = max_ratio.max(r);

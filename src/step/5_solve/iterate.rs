@@ -116,34 +116,49 @@ pub fn solve(
         let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
         let dp = b.dp - a.dp;
         let spin = c.spin;
-        for p in c.points[..c.len].iter_mut() {
-            let ca = if c.turn_a { a.dq * p.ra } else { p.ra };
-            let cb = if c.turn_b { b.dq * p.rb } else { p.rb };
-            let s = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
-            let (bias, mass_scale, impulse_scale) = if s > 0.0 {
-                (s * inv_h, 1.0, 0.0)
-            } else if use_bias {
-                let soft = c.softness;
-                (
-                    (soft.bias_rate * s).max(-c.max_push),
-                    soft.mass_scale,
-                    soft.impulse_scale,
-                )
-            } else {
-                (0.0, 1.0, 0.0)
-            };
-            let vn = row_velocity(&a, &b, c.normal, &p.normal_row, spin);
-            let lambda =
-                -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
-            let new = (p.normal_impulse + lambda).max(0.0);
-            if p.normal_impulse == 0.0 && new > 0.0 {
-                // First push on this point: the approach speed that restitution reverses.
-                p.relative_velocity = p.relative_velocity.min(vn);
+        // A manifold's normal rows are coupled through its two bodies (a cube's corner
+        // rows: 4/m on the diagonal, 1/m and −2/m off it), so one sweep leaves an impact's
+        // impulses lopsided. Sweep again while a sweep moves them by more than NORMAL_TOL
+        // of their sum, at most NORMAL_SWEEPS times; not when a row is held at the
+        // push-out cap (a shared rate limit: converged, the shares add up).
+        let sweeps = if c.len > 1 { NORMAL_SWEEPS } else { 1 };
+        for _ in 0..sweeps {
+            let (mut largest, mut total, mut capped) = (0.0f32, 0.0f32, false);
+            for p in c.points[..c.len].iter_mut() {
+                let ca = if c.turn_a { a.dq * p.ra } else { p.ra };
+                let cb = if c.turn_b { b.dq * p.rb } else { p.rb };
+                let s = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
+                let (bias, mass_scale, impulse_scale) = if s > 0.0 {
+                    (s * inv_h, 1.0, 0.0)
+                } else if use_bias {
+                    let soft = c.softness;
+                    capped |= soft.bias_rate * s < -c.max_push;
+                    (
+                        (soft.bias_rate * s).max(-c.max_push),
+                        soft.mass_scale,
+                        soft.impulse_scale,
+                    )
+                } else {
+                    (0.0, 1.0, 0.0)
+                };
+                let vn = row_velocity(&a, &b, c.normal, &p.normal_row, spin);
+                let lambda =
+                    -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
+                let new = (p.normal_impulse + lambda).max(0.0);
+                if p.normal_impulse == 0.0 && new > 0.0 {
+                    // First push on this point: the approach speed that restitution reverses.
+                    p.relative_velocity = p.relative_velocity.min(vn);
+                }
+                let dl = new - p.normal_impulse;
+                p.normal_impulse = new;
+                p.max_normal_impulse = p.max_normal_impulse.max(new);
+                apply_normal(&mut a, &mut b, c.normal, &p.normal_row, dl, spin);
+                largest = largest.max(dl.abs());
+                total += new;
             }
-            let dl = new - p.normal_impulse;
-            p.normal_impulse = new;
-            p.max_normal_impulse = p.max_normal_impulse.max(new);
-            apply_normal(&mut a, &mut b, c.normal, &p.normal_row, dl, spin);
+            if capped || largest <= NORMAL_TOL * total {
+                break;
+            }
         }
         // Friction, skipped for frictionless pairs (and when the effect is off).
         if c.friction > 0.0 {
@@ -172,6 +187,12 @@ pub fn solve(
         store(bodies, c.b, b);
     }
 }
+
+/// Most sweeps over one manifold's normal rows in a pass.
+pub const NORMAL_SWEEPS: usize = 4;
+/// A sweep that changes no row by more than this fraction of the manifold's total normal
+/// impulse ends the sweeps (resting contacts: after the first).
+pub const NORMAL_TOL: f32 = 1e-3;
 
 /// Restitution: points that were approaching faster than `threshold` and pushed get
 /// their normal velocity driven to −e times the approach speed.

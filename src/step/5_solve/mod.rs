@@ -47,6 +47,8 @@ pub struct SolverScratch {
     iterations: u32,
     /// Per body: how many of its manifolds overlap (for the push-out share).
     overlaps: Vec<u32>,
+    /// Per body: the heaviest body it has a manifold with.
+    heaviest: Vec<f32>,
     /// How many constraints, at the front, involve a fixed collider.
     fixed_constraints: usize,
 }
@@ -142,7 +144,8 @@ fn run_stage(
             let stiffness = *params;
             let (m, c, s) = (&world.manifolds, &world.colliders, &world.bodies);
             let (out, overlaps) = (&mut world.constraints, &mut scratch.overlaps);
-            let ratio = prepare_constraints(m, c, s, bodies, stiffness, overlaps, out);
+            let heaviest = &mut scratch.heaviest;
+            let ratio = prepare_constraints(m, c, s, bodies, stiffness, overlaps, heaviest, out);
             let fixed = |c: &&ContactConstraint| c.a == STATIC || c.b == STATIC;
             scratch.fixed_constraints = world.constraints.iter().take_while(fixed).count();
             debug_assert!(
