@@ -5,7 +5,7 @@
 //! stiffness that holds its sag to half a percent of its smaller body
 //! (`SolverSettings::max_sag`, 0.2 %), and the step takes the substeps that needs (up
 //! to 16). Before: the crate sagged 13.6 cm in 10 s; the 2 cm stack drifted 2.6 mm
-//! (13 %). Now 8.7 mm and 0.76 mm (3.8 %, most of it the first steps after spawn).
+//! (13 %). Now 8.6 mm and 0.66 mm (3.3 %, most of it the first steps after spawn).
 
 mod common;
 use bevy::prelude::*;
