@@ -113,6 +113,16 @@ impl Shape {
         }
     }
 
+    /// The shape's smallest dimension, m: a sphere's diameter, a box's thinnest side; a
+    /// plane has none (∞).
+    pub fn thickness(&self) -> f32 {
+        match *self {
+            Shape::Sphere { radius } => 2.0 * radius,
+            Shape::Cuboid { half_extents } => 2.0 * half_extents.min_element(),
+            Shape::Plane { .. } => f32::INFINITY,
+        }
+    }
+
     /// World-space bounding box at a pose, as (min, max). Infinite planes are unbounded.
     pub fn aabb(&self, pos: Vec3, rot: Quat) -> (Vec3, Vec3) {
         let half = match *self {

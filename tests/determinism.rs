@@ -28,26 +28,12 @@ fn bits(app: &App, bodies: &[Entity]) -> Vec<[u32; 13]> {
     bodies
         .iter()
         .map(|&e| {
+            let world = app.world();
             let (t, v) = (
-                app.world().get::<Transform>(e).unwrap(),
-                app.world().get::<Velocity>(e).unwrap(),
+                world.get::<Transform>(e).unwrap(),
+                world.get::<Velocity>(e).unwrap(),
             );
-            [
-                t.translation.x,
-                t.translation.y,
-                t.translation.z,
-                t.rotation.x,
-                t.rotation.y,
-                t.rotation.z,
-                t.rotation.w,
-                v.linear.x,
-                v.linear.y,
-                v.linear.z,
-                v.angular.x,
-                v.angular.y,
-                v.angular.z,
-            ]
-            .map(f32::to_bits)
+            tumble::state_hash::body_bits(t, v)
         })
         .collect()
 }

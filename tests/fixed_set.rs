@@ -11,39 +11,6 @@ use bevy::prelude::*;
 use common::*;
 use tumble::prelude::*;
 
-/// Runs `case` under every pacing in `Pacing::GAME` for each sleeping setting in
-/// `sleeping`, and checks the final poses and velocities are bit-identical across
-/// pacings (sleeping on and off are not compared with each other: a sleeper is frozen).
-fn under_every_pacing(sleeping: &[bool], case: impl Fn(&mut App, bool, Pacing)) {
-    for &sleeping in sleeping {
-        let mut reference = None;
-        for pacing in Pacing::GAME {
-            let mut app = paced_app(pacing, sleeping);
-            case(&mut app, sleeping, pacing);
-            let snap: Vec<_> = snapshot(&mut app).into_iter().map(|(_, s)| s).collect();
-            match &reference {
-                None => reference = Some(snap),
-                Some(r) => assert!(
-                    *r == snap,
-                    "{pacing:?} (sleeping {sleeping}) differs from one step per update"
-                ),
-            }
-        }
-    }
-}
-
-/// Distance fallen from rest after `t` s, with the bound on the semi-implicit error
-/// (½·g·hs·t, hs = h/4) doubled, plus 1 mm for the start of the fall inside a step.
-#[track_caller]
-fn assert_free_fall(drop: f32, t: f32, what: &str) {
-    let exact = 0.5 * G * t * t;
-    let bound = G * (H / 4.0) * t + 1e-3;
-    assert!(
-        (drop - exact).abs() < bound,
-        "{what}: fell {drop} m in {t} s, free fall is {exact} ± {bound}"
-    );
-}
-
 /// A static 10 × 1 × 10 m box whose top is at y = 0.
 fn floor(app: &mut App, kind: Option<RigidBody>) -> Entity {
     let mut e = app.world_mut().spawn((
@@ -76,7 +43,7 @@ fn resting_ball(app: &mut App, sleeping: bool, what: &str) -> Entity {
 #[test]
 fn a_static_floor_moved_down_lets_the_ball_fall_freely() {
     for kind in [None, Some(RigidBody::Static)] {
-        under_every_pacing(&[false, true], |app, sleeping, pacing| {
+        under_every_pacing(&Pacing::GAME, &[false, true], |app, sleeping, pacing| {
             let what = format!("{kind:?} {pacing:?} sleeping {sleeping}");
             let f = floor(app, kind);
             let b = resting_ball(app, sleeping, &what);
@@ -94,7 +61,7 @@ fn a_static_floor_moved_down_lets_the_ball_fall_freely() {
 
 #[test]
 fn a_static_floor_moved_up_lifts_the_ball() {
-    under_every_pacing(&[false, true], |app, sleeping, pacing| {
+    under_every_pacing(&Pacing::GAME, &[false, true], |app, sleeping, pacing| {
         let f = floor(app, None);
         let b = resting_ball(app, sleeping, &format!("{pacing:?} sleeping {sleeping}"));
         app.world_mut()
@@ -113,7 +80,7 @@ fn a_static_floor_moved_up_lifts_the_ball() {
 
 #[test]
 fn a_despawned_floor_lets_the_ball_fall_freely() {
-    under_every_pacing(&[false, true], |app, sleeping, pacing| {
+    under_every_pacing(&Pacing::GAME, &[false, true], |app, sleeping, pacing| {
         let what = format!("{pacing:?} sleeping {sleeping}");
         let f = floor(app, None);
         let b = resting_ball(app, sleeping, &what);
@@ -126,7 +93,7 @@ fn a_despawned_floor_lets_the_ball_fall_freely() {
 
 #[test]
 fn a_floor_spawned_under_a_falling_ball_catches_it() {
-    under_every_pacing(&[false, true], |app, sleeping, pacing| {
+    under_every_pacing(&Pacing::GAME, &[false, true], |app, sleeping, pacing| {
         let b = ball(app, 0.5, 1.0, Vec3::new(0.0, 3.0, 0.0), Vec3::ZERO);
         step(app, 10);
         floor(app, Some(RigidBody::Static));
@@ -141,7 +108,7 @@ fn a_floor_spawned_under_a_falling_ball_catches_it() {
 
 #[test]
 fn a_static_box_made_dynamic_in_place_falls() {
-    under_every_pacing(&[false, true], |app, sleeping, pacing| {
+    under_every_pacing(&Pacing::GAME, &[false, true], |app, sleeping, pacing| {
         let what = format!("{pacing:?} sleeping {sleeping}");
         let e = app
             .world_mut()
@@ -162,7 +129,7 @@ fn a_static_box_made_dynamic_in_place_falls() {
 #[test]
 fn switching_sleeping_off_wakes_a_stack_that_then_falls_with_its_floor() {
     // Starts with sleeping on: switching it off is the thing under test.
-    under_every_pacing(&[true], |app, _, pacing| {
+    under_every_pacing(&Pacing::GAME, &[true], |app, _, pacing| {
         let f = floor(app, None);
         let boxes: Vec<Entity> = (0..3)
             .map(|i| {

@@ -38,39 +38,9 @@ fn resting_ball(app: &mut App, sleeping: bool) -> Entity {
     b
 }
 
-/// The drop from rest in `t` s of free fall, within the semi-implicit substep error
-/// (½·g·hs·t with hs = h/4, doubled) plus 1 mm for the start inside a step.
-fn assert_free_fall(drop: f32, t: f32, what: &str) {
-    let exact = 0.5 * G * t * t;
-    assert_near(drop, exact, G * (H / 4.0) * t + 1e-3, what);
-}
-
-/// Runs `case` under every pacing with sleeping on and off, and checks the final poses
-/// are bit-identical across pacings.
-fn under_every_pacing(case: impl Fn(&mut App, bool, Pacing)) {
-    for sleeping in [false, true] {
-        let mut reference = None;
-        for pacing in PACINGS {
-            let mut app = paced_app(pacing, sleeping);
-            case(&mut app, sleeping, pacing);
-            let snap = snapshot(&mut app)
-                .into_iter()
-                .map(|(_, s)| s)
-                .collect::<Vec<_>>();
-            match &reference {
-                None => reference = Some(snap),
-                Some(r) => assert!(
-                    *r == snap,
-                    "{pacing:?} (sleeping {sleeping}) differs from one step per update"
-                ),
-            }
-        }
-    }
-}
-
 #[test]
 fn a_despawned_floor_is_gone_by_the_next_step() {
-    under_every_pacing(|app, sleeping, pacing| {
+    under_every_pacing(&PACINGS, &[false, true], |app, sleeping, pacing| {
         let f = floor(app);
         let b = resting_ball(app, sleeping);
         let y0 = pos(app, b).y;
@@ -82,7 +52,7 @@ fn a_despawned_floor_is_gone_by_the_next_step() {
 
 #[test]
 fn a_removed_floor_collider_is_gone_by_the_next_step() {
-    under_every_pacing(|app, sleeping, pacing| {
+    under_every_pacing(&PACINGS, &[false, true], |app, sleeping, pacing| {
         let f = floor(app);
         let b = resting_ball(app, sleeping);
         let y0 = pos(app, b).y;
@@ -94,7 +64,7 @@ fn a_removed_floor_collider_is_gone_by_the_next_step() {
 
 #[test]
 fn a_static_floor_turned_dynamic_falls_with_the_ball() {
-    under_every_pacing(|app, sleeping, pacing| {
+    under_every_pacing(&PACINGS, &[false, true], |app, sleeping, pacing| {
         let f = app
             .world_mut()
             .spawn((
@@ -116,7 +86,7 @@ fn a_static_floor_turned_dynamic_falls_with_the_ball() {
 
 #[test]
 fn a_floor_moved_down_wakes_and_drops_the_ball() {
-    under_every_pacing(|app, sleeping, pacing| {
+    under_every_pacing(&PACINGS, &[false, true], |app, sleeping, pacing| {
         let f = floor(app);
         let b = resting_ball(app, sleeping);
         let y0 = pos(app, b).y;

@@ -98,6 +98,38 @@ pub fn step(app: &mut App, n: usize) {
     assert_eq!(steps_taken(app), target, "overshot the step count");
 }
 
+/// Runs `case` under each pacing for each sleeping setting, and checks the final poses
+/// and velocities are bit-identical across pacings (sleeping on and off are not compared
+/// with each other: a sleeper is frozen).
+pub fn under_every_pacing(
+    pacings: &[Pacing],
+    sleeping: &[bool],
+    case: impl Fn(&mut App, bool, Pacing),
+) {
+    for &sleeping in sleeping {
+        let mut reference = None;
+        for &pacing in pacings {
+            let mut app = paced_app(pacing, sleeping);
+            case(&mut app, sleeping, pacing);
+            let snap: Vec<_> = snapshot(&mut app).into_iter().map(|(_, s)| s).collect();
+            match &reference {
+                None => reference = Some(snap),
+                Some(r) => assert!(
+                    *r == snap,
+                    "{pacing:?} (sleeping {sleeping}) differs from one step per update"
+                ),
+            }
+        }
+    }
+}
+
+/// The drop from rest in `t` s of free fall, within the semi-implicit substep error
+/// (½·g·hs·t with hs = h/4, doubled) plus 1 mm for the start of the fall inside a step.
+#[track_caller]
+pub fn assert_free_fall(drop: f32, t: f32, what: &str) {
+    assert_near(drop, 0.5 * G * t * t, G * (H / 4.0) * t + 1e-3, what);
+}
+
 /// Runs `frames` frames (any number of physics steps, including none).
 pub fn frames(app: &mut App, frames: usize) {
     for _ in 0..frames {
@@ -242,24 +274,7 @@ pub fn snapshot(app: &mut App) -> Vec<(Entity, [u32; 13])> {
         .query_filtered::<(Entity, &Transform, &Velocity), With<RigidBody>>();
     let mut out: Vec<_> = q
         .iter(app.world())
-        .map(|(e, t, v)| {
-            let f = [
-                t.translation.x,
-                t.translation.y,
-                t.translation.z,
-                t.rotation.x,
-                t.rotation.y,
-                t.rotation.z,
-                t.rotation.w,
-                v.linear.x,
-                v.linear.y,
-                v.linear.z,
-                v.angular.x,
-                v.angular.y,
-                v.angular.z,
-            ];
-            (e, f.map(f32::to_bits))
-        })
+        .map(|(e, t, v)| (e, tumble::state_hash::body_bits(t, v)))
         .collect();
     out.sort_by_key(|(e, _)| *e);
     out

@@ -138,11 +138,7 @@ pub fn collide(
 /// of the smaller shape's size away, in a direction hashed from the two entities: the
 /// pile's pairs push every which way and it spreads as a ball. Returns that offset.
 fn coincident_nudge(a: &ColliderEntry, b: &ColliderEntry) -> Option<Vec3> {
-    let size = |c: &ColliderEntry| {
-        let (lo, hi) = c.shape.aabb(Vec3::ZERO, Quat::IDENTITY);
-        (hi - lo).min_element() * 0.5
-    };
-    let scale = 1e-3 * size(a).min(size(b));
+    let scale = 0.5e-3 * a.shape.thickness().min(b.shape.thickness());
     if !scale.is_finite() || a.pos.distance_squared(b.pos) > scale * scale {
         return None;
     }

@@ -31,12 +31,7 @@ pub const STACK_LOAD: f32 = 8.0;
 /// The size that sets a contact's allowed sag: the smaller of the two shapes' smallest
 /// dimension (a sphere's diameter, a box's thinnest side); a plane has none.
 pub fn pair_size(a: &Shape, b: &Shape) -> f32 {
-    let size = |s: &Shape| match *s {
-        Shape::Sphere { radius } => 2.0 * radius,
-        Shape::Cuboid { half_extents } => 2.0 * half_extents.min_element(),
-        Shape::Plane { .. } => f32::INFINITY,
-    };
-    size(a).min(size(b))
+    a.thickness().min(b.thickness())
 }
 
 /// What one contact asks of the solver.
