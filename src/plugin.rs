@@ -25,7 +25,8 @@ pub enum PhysicsSystems {
     BroadPhase,
     /// Contact manifolds for the candidate pairs.
     NarrowPhase,
-    /// Contact impulses (substepped soft step, friction, restitution).
+    /// Contact impulses (substepped soft step, friction, restitution), then the sweep
+    /// that stops bodies an impact drove into a fixed collider.
     Solve,
     /// Solver arrays → `Transform` / `Velocity`; collision messages.
     Writeback,
@@ -144,7 +145,11 @@ impl Plugin for TumblePlugin {
                 )
                     .chain()
                     .in_set(S::NarrowPhase),
-                (stamp::<5>, solve::solve_contacts.run_if(collisions))
+                (
+                    stamp::<5>,
+                    solve::solve_contacts.run_if(collisions.clone()),
+                    solve::sweep_against_fixed.run_if(collisions),
+                )
                     .chain()
                     .in_set(S::Solve),
                 (

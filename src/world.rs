@@ -68,6 +68,22 @@ pub struct BodyState {
     pub sleep_time: f32,
 }
 
+/// Whether principal inverse inertias are the same about every axis (a sphere, a cube,
+/// a body that cannot turn): then the world inertia never changes as the body turns.
+pub fn is_isotropic(inv_principal: Vec3) -> bool {
+    inv_principal.x == inv_principal.y && inv_principal.y == inv_principal.z
+}
+
+/// R · diag(inv_principal) · Rᵀ.
+pub fn world_inv_inertia(rot: Quat, inv_principal: Vec3) -> Mat3 {
+    // Isotropic (spheres, locked rotation): the same in every frame.
+    if is_isotropic(inv_principal) {
+        return Mat3::from_diagonal(inv_principal);
+    }
+    let r = Mat3::from_quat(rot);
+    r * Mat3::from_diagonal(inv_principal) * r.transpose()
+}
+
 impl BodyState {
     pub fn is_dynamic(&self) -> bool {
         self.kind == RigidBody::Dynamic

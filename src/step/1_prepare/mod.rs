@@ -15,7 +15,9 @@ use crate::body::*;
 use crate::collider::{Collider, Shape};
 use crate::effects::{Effects, GravityScale, LockRotation};
 use crate::settings::SolverSettings;
-use crate::world::{BodyState, ColliderEntry, ForceModel, PhysicsWorld, STATIC, SolverBody};
+use crate::world::{
+    BodyState, ColliderEntry, ForceModel, PhysicsWorld, STATIC, SolverBody, world_inv_inertia,
+};
 
 pub use fixed::{InFixedSet, sync_fixed_set};
 pub use lifecycle::{
@@ -276,14 +278,4 @@ fn gather_body(b: BodyInput, settings: &SolverSettings) -> (BodyState, SolverBod
         inv_inertia: world_inv_inertia(b.rot, inv_inertia),
     };
     (state, solver)
-}
-
-/// R · diag(inv_principal) · Rᵀ.
-pub fn world_inv_inertia(rot: Quat, inv_principal: Vec3) -> Mat3 {
-    // Isotropic (spheres, locked rotation): the same in every frame.
-    if inv_principal.x == inv_principal.y && inv_principal.y == inv_principal.z {
-        return Mat3::from_diagonal(inv_principal);
-    }
-    let r = Mat3::from_quat(rot);
-    r * Mat3::from_diagonal(inv_principal) * r.transpose()
 }

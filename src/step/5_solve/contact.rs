@@ -9,7 +9,7 @@ use super::softness::Softness;
 use super::stiffness::{contact_softness, pair_size};
 use crate::collider::Shape;
 use crate::step::narrow_phase::{MAX_POINTS, Manifold};
-use crate::world::{BodyState, ColliderEntry, STATIC, SolverBody};
+use crate::world::{BodyState, ColliderEntry, STATIC, SolverBody, is_isotropic};
 
 /// The solver body every static collider shares: never moves, infinite mass.
 pub const STATIC_BODY: SolverBody = SolverBody {
@@ -41,7 +41,10 @@ pub struct ConstraintPoint {
     pub tangent_impulse: Vec2,
     /// Largest normal impulse this step; restitution only acts on points that pushed.
     pub max_normal_impulse: f32,
-    /// Normal relative velocity before the point first pushed (for restitution).
+    /// Normal relative velocity at the start of the step, m/s.
+    pub prepared_velocity: f32,
+    /// Normal relative velocity when the point first pushed, m/s: the approach speed
+    /// restitution reverses (see `ContactConstraint::approach_gain`).
     pub relative_velocity: f32,
 }
 
@@ -96,8 +99,18 @@ pub struct ContactConstraint {
     /// Whether each body can turn here (a dynamic body with rotation, or a spinning
     /// kinematic one). A static body or one with `LockRotation` runs no angular terms.
     pub spin: [bool; 2],
+    /// A body here can turn and its inertia is not the same about every axis, so its
+    /// world inertia changes as it turns: the rows are refreshed every substep
+    /// ([`refresh_rows`]).
+    pub refresh: bool,
     pub friction: f32,
     pub restitution: f32,
+    /// How much faster than at the start of the step a point may be approaching when it
+    /// first pushes, m/s: what gravity adds in a step, |g|·dt. A ball falling onto a
+    /// floor meets it up to a step after the contact was prepared, g·dt faster; a light
+    /// box squeezed into the floor by a heavy ball is driven in by the solver, and that
+    /// is no approach to bounce back from (it came back at 458 m/s).
+    pub approach_gain: f32,
     pub softness: Softness,
     /// Fastest push-out, m/s, this contact may drive: the setting shared among the
     /// overlaps of the more crowded of its two bodies ([`push_out_share`]).
@@ -154,6 +167,8 @@ pub struct ContactParams {
     pub damping_ratio: f32,
     /// Substep, s.
     pub h: f32,
+    /// Step, s.
+    pub dt: f32,
     /// Fastest push-out of one body, m/s (`SolverSettings::max_push_out`).
     pub max_push_out: f32,
     /// Allowed resting sag per contact, as a fraction of the smaller body's size.
@@ -228,6 +243,7 @@ pub fn prepare_constraints(
             overlaps[body as usize]
         }
     };
+    let anisotropic = |i: u32| i != STATIC && !is_isotropic(states[i as usize].inv_inertia);
     let mut max_ratio = 1.0f32;
     for (mi, m) in manifolds.iter().enumerate() {
         let (ca, cb) = (&colliders[m.a as usize], &colliders[m.b as usize]);
@@ -270,8 +286,10 @@ pub fn prepare_constraints(
             turn_a: spin[0] && !matches!(ca.shape, Shape::Sphere { .. }),
             turn_b: spin[1] && !matches!(cb.shape, Shape::Sphere { .. }),
             spin,
+            refresh: (spin[0] && anisotropic(ca.body)) || (spin[1] && anisotropic(cb.body)),
             friction: if stiffness.friction { m.friction } else { 0.0 },
             restitution: m.restitution,
+            approach_gain: stiffness.gravity * stiffness.dt,
             softness,
             // A static side cannot pass a push along, so it pushes at the full limit.
             max_push: if ca.body == STATIC || cb.body == STATIC {
@@ -298,11 +316,38 @@ pub fn prepare_constraints(
                 normal_impulse: p.normal_impulse,
                 tangent_impulse: Vec2::new(p.tangent_impulse.dot(t1), p.tangent_impulse.dot(t2)),
                 max_normal_impulse: 0.0,
+                prepared_velocity: 0.0,
                 relative_velocity: 0.0,
             };
-            cp.relative_velocity = row_velocity(&sa, &sb, m.normal, &normal_row, spin);
+            cp.prepared_velocity = row_velocity(&sa, &sb, m.normal, &normal_row, spin);
+            cp.relative_velocity = cp.prepared_velocity;
         }
         out.push(c);
     }
     max_ratio
+}
+
+/// Re-derives the inverse-inertia images of the rows and the point masses of constraints
+/// with a turning anisotropic body, from the bodies' current world inertia.
+///
+/// A thin rod's inertia about its long axis is thousands of times smaller than across
+/// it. Prepared once per step, the rows keep the start-of-step world inertia while the
+/// rod turns a tenth of a radian: an impulse then spins it about where its long axis
+/// *was*, which is mostly across the rod now, and the step hands it hundreds of joules
+/// (`tests/regress_turning_rod_inertia.rs`). The anchors stay at the start of the step:
+/// impulses along any fixed row with the true mass matrix cannot add energy.
+pub fn refresh_rows(bodies: &[SolverBody], constraints: &mut [ContactConstraint]) {
+    for c in constraints.iter_mut().filter(|c| c.refresh) {
+        let (a, b) = (body(bodies, c.a), body(bodies, c.b));
+        let linear = a.inv_mass + b.inv_mass;
+        for p in c.points[..c.len].iter_mut() {
+            let rows = std::iter::once(&mut p.normal_row).chain(p.tangent_rows.iter_mut());
+            for row in rows {
+                row.ia = a.inv_inertia * row.ra;
+                row.ib = b.inv_inertia * row.rb;
+            }
+            p.normal_mass = mass_of(linear + p.normal_row.inv_mass(c.spin));
+            p.tangent_mass = isotropic_tangent_mass(linear, &p.tangent_rows, c.spin);
+        }
+    }
 }

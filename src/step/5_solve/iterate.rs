@@ -145,9 +145,13 @@ pub fn solve(
                 let lambda =
                     -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
                 let new = (p.normal_impulse + lambda).max(0.0);
-                if p.normal_impulse == 0.0 && new > 0.0 {
-                    // First push on this point: the approach speed that restitution reverses.
-                    p.relative_velocity = p.relative_velocity.min(vn);
+                if p.max_normal_impulse == 0.0 && new > 0.0 {
+                    // First push on this point: the approach speed that restitution
+                    // reverses, as fast as free motion made it since the step began,
+                    // and no faster. Other contacts' impulses (a light body squeezed
+                    // between a heavy one and a wall) are not an approach to reverse.
+                    let floor = p.prepared_velocity - c.approach_gain;
+                    p.relative_velocity = vn.clamp(floor, p.prepared_velocity);
                 }
                 let dl = new - p.normal_impulse;
                 p.normal_impulse = new;

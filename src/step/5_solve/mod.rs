@@ -4,6 +4,7 @@
 //! step and run the [`SolverStage`]s in order. Everything else keeps stage 2's free motion.
 
 mod contact;
+mod continuous;
 mod iterate;
 mod softness;
 mod stiffness;
@@ -13,11 +14,13 @@ use bevy::prelude::*;
 use crate::effects::Effects;
 use crate::settings::{Gravity, Integrator, SolverSettings};
 use crate::step::integrate::{FreeStep, Inertial, free_substep, rotate};
-use crate::world::{PhysicsWorld, STATIC};
+use crate::world::{PhysicsWorld, STATIC, is_isotropic, world_inv_inertia};
 
 pub use contact::{
     AngularRow, ConstraintPoint, ContactConstraint, ContactParams, prepare_constraints,
+    refresh_rows,
 };
+pub use continuous::{CONTINUOUS_SLOP, sweep_against_fixed};
 pub use iterate::{apply_restitution, solve, warm_start};
 pub use softness::Softness;
 pub use stiffness::{Wanted, contact_softness, pair_size, substeps_for, wanted_hertz};
@@ -51,6 +54,8 @@ pub struct SolverScratch {
     heaviest: Vec<f32>,
     /// How many constraints, at the front, involve a fixed collider.
     fixed_constraints: usize,
+    /// Some constraint has a turning anisotropic body (see [`refresh_rows`]).
+    refresh: bool,
 }
 
 /// Solves every contact of this step.
@@ -86,6 +91,7 @@ pub fn solve_contacts(
         max_hertz: 0.0,
         damping_ratio: settings.contact_damping_ratio,
         h: dt / min_substeps as f32,
+        dt,
         max_push_out: settings.max_push_out,
         max_sag: settings.max_sag,
     };
@@ -155,6 +161,7 @@ fn run_stage(
                 "contacts with fixed colliders must come first"
             );
             scratch.iterations = iterations_for(settings.iterations, ratio);
+            scratch.refresh = world.constraints.iter().any(|c| c.refresh);
         }
         SolverStage::IntegrateVelocities => {
             scratch.free.clear();
@@ -191,6 +198,13 @@ fn run_stage(
                 let (b, s) = (&world.bodies[i as usize], &mut bodies[i as usize]);
                 s.dp += fs.dx + h * (s.v - fs.v);
                 s.dq = (rotate(fs.q, s.w - fs.w, h) * b.q0.inverse()).normalize();
+                if scratch.refresh && !is_isotropic(b.inv_inertia) {
+                    s.inv_inertia = world_inv_inertia(s.dq * b.q0, b.inv_inertia);
+                }
+            }
+            // The world inertia of an anisotropic body turned with it: the rows follow.
+            if scratch.refresh {
+                refresh_rows(bodies, &mut world.constraints);
             }
         }
         SolverStage::Restitution => {

@@ -126,6 +126,7 @@ mod tests {
             gravity: 9.81,
             damping_ratio: 10.0,
             h,
+            dt: 1.0 / 60.0,
             max_push_out: 3.0,
             max_sag: 0.005,
         }
