@@ -67,20 +67,24 @@ fn main() {
     let chunks = 10u64;
     for c in 1..=chunks {
         run(&mut app, steps / chunks);
-        let drift = boxes
-            .iter()
-            .zip(&settled)
-            .map(|(&b, p)| (position(&app, b) - *p).length())
-            .fold(0.0f32, f32::max);
+        let moved = |i: usize| position(&app, boxes[i]) - settled[i];
+        let worst = (0..boxes.len())
+            .max_by(|&a, &b| moved(a).length().total_cmp(&moved(b).length()))
+            .unwrap_or(0);
+        let drift = moved(worst).length();
         let gain = energy(&app, &boxes) - e0;
         let rss = resident_kib();
         worst_drift = worst_drift.max(drift);
         worst_gain = worst_gain.max(gain);
         worst_rss = worst_rss.max(rss);
         println!(
-            "{:5.1} min: max drift {:.4} mm, energy {gain:+.4} J, RSS {rss} KiB, {:.1} s wall",
+            "{:5.1} min: max drift {:.4} mm (box {worst}: level {} of stack {}, by {:.4} mm), \
+             energy {gain:+.4} J, RSS {rss} KiB, {:.1} s wall",
             minutes * c as f64 / chunks as f64,
             drift * 1000.0,
+            worst % HEIGHT,
+            worst / HEIGHT,
+            moved(worst) * 1000.0,
             started.elapsed().as_secs_f64()
         );
     }

@@ -223,3 +223,30 @@ pub fn apply_restitution(
         store(bodies, c.b, b);
     }
 }
+
+/// After restitution: points that touch (separation ≤ 0 at the end of the step) and
+/// still approach get the impulse that stops them, and no more (nothing is taken back, so
+/// a bounce off this contact stays). Run over the contacts with fixed colliders: a light
+/// ball knocked toward a wall by a heavy one's bounce left the step 5 mm inside the wall
+/// at 12.7 m/s, and sank 1.5 cm under the next steps' load.
+pub fn stop_approach(bodies: &mut [SolverBody], constraints: &mut [ContactConstraint]) {
+    for c in constraints.iter_mut() {
+        let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
+        let dp = b.dp - a.dp;
+        for p in c.points[..c.len].iter_mut() {
+            let ca = if c.turn_a { a.dq * p.ra } else { p.ra };
+            let cb = if c.turn_b { b.dq * p.rb } else { p.rb };
+            let s = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
+            let vn = row_velocity(&a, &b, c.normal, &p.normal_row, c.spin);
+            if s > 0.0 || vn >= 0.0 {
+                continue;
+            }
+            let dl = -p.normal_mass * vn;
+            p.normal_impulse += dl;
+            p.max_normal_impulse = p.max_normal_impulse.max(p.normal_impulse);
+            apply_normal(&mut a, &mut b, c.normal, &p.normal_row, dl, c.spin);
+        }
+        store(bodies, c.a, a);
+        store(bodies, c.b, b);
+    }
+}

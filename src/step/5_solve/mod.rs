@@ -21,7 +21,7 @@ pub use contact::{
     refresh_rows,
 };
 pub use continuous::{CONTINUOUS_SLOP, sweep_against_fixed};
-pub use iterate::{apply_restitution, solve, warm_start};
+pub use iterate::{apply_restitution, solve, stop_approach, warm_start};
 pub use softness::Softness;
 pub use stiffness::{Wanted, contact_softness, pair_size, substeps_for, wanted_hertz};
 
@@ -213,6 +213,10 @@ fn run_stage(
                 &mut world.constraints,
                 settings.restitution_threshold,
             );
+            // A bounce between two bodies can send one into a wall it is touching; the
+            // world has the last word here too.
+            let fixed = scratch.fixed_constraints;
+            stop_approach(bodies, &mut world.constraints[..fixed]);
         }
         SolverStage::StoreImpulses => store_impulses(world),
     }
