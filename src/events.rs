@@ -1,28 +1,106 @@
-//! Collision messages and reading a body's contacts.
+//! Collision events and reading a body's contacts.
 //!
-//! Two bodies *touch* when a contact point between them overlaps or pushed this step.
-//! [`CollisionStarted`] is written on the first step they touch, [`CollisionEnded`] on the
-//! first step they no longer do. Read them with `MessageReader` after
-//! `PhysicsSystems::Writeback`.
+//! Two colliders *touch* when a contact point between them overlaps or pushed this step
+//! (for a [`Sensor`](crate::layers::Sensor): when they overlap). Events are opt-in per
+//! collider, as in avian3d and bevy_rapier3d: a pair is reported when either collider
+//! has [`CollisionEventsEnabled`], so a scene with thousands of contacts and no one
+//! listening pays one flag test per contact.
+//!
+//! - [`CollisionStart`] on the first step a pair touches, [`CollisionEnd`] on the first
+//!   step it no longer does. Each is a **message** (one per pair, `collider1` the lower
+//!   entity; read with `MessageReader` after `PhysicsSystems::Writeback`) and an
+//!   **entity event** triggered on every collider of the pair that has events enabled,
+//!   with itself as `collider1`:
+//!   `commands.entity(e).observe(|hit: On<CollisionStart>| …)`.
+//! - Events never name a despawned entity: a pair whose collider was despawned ends
+//!   silently. Sleeping is not separating: a pair that falls asleep touching stays
+//!   started.
+//! - [`CollisionStart::contact`] tells what the hit was like: points, normal, depth, the
+//!   step's impulses and the speed of impact (for sounds and damage).
 
-use bevy::platform::collections::HashSet;
+use bevy::ecs::entity::Entities;
+use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 
-use crate::step::narrow_phase::Manifold;
-use crate::world::PhysicsWorld;
+use crate::step::narrow_phase::{MAX_POINTS, Manifold};
+use crate::world::{PhysicsWorld, STATIC};
 
-/// Two bodies started touching. `a` < `b` by entity order.
-#[derive(Message, Clone, Copy, Debug, PartialEq, Eq)]
-pub struct CollisionStarted {
-    pub a: Entity,
-    pub b: Entity,
+/// Opts a collider in to [`CollisionStart`] / [`CollisionEnd`]: as messages for its
+/// pairs, and as entity events on itself.
+#[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[reflect(Component)]
+pub struct CollisionEventsEnabled;
+
+/// What a contact was like in the step it started.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ContactData {
+    /// Unit normal pointing from `collider1` towards `collider2`.
+    pub normal: Vec3,
+    /// Contact points (world, start of the step); the first `len` are used.
+    pub points: [Vec3; MAX_POINTS],
+    pub len: usize,
+    /// Deepest overlap at the start of the step, m (0 when it only just touched).
+    pub penetration: f32,
+    /// Normal impulse on `collider2` over the step, N·s (the same, opposite, on
+    /// `collider1`); divided by the step, the mean contact force. 0 for sensors.
+    pub normal_impulse: f32,
+    /// Friction impulse on `collider2` over the step, world frame, N·s.
+    pub friction_impulse: Vec3,
+    /// How fast the surfaces approached at impact, m/s (the fastest point).
+    pub impact_speed: f32,
 }
 
-/// Two bodies stopped touching. `a` < `b` by entity order.
-#[derive(Message, Clone, Copy, Debug, PartialEq, Eq)]
-pub struct CollisionEnded {
-    pub a: Entity,
-    pub b: Entity,
+impl ContactData {
+    /// The contact points.
+    pub fn points(&self) -> &[Vec3] {
+        &self.points[..self.len]
+    }
+
+    /// The data of a manifold, seen from A (`flip`: from B).
+    fn of(m: &Manifold, flip: bool) -> Self {
+        let sign = if flip { -1.0 } else { 1.0 };
+        let mut data = Self {
+            normal: m.normal * sign,
+            len: m.len,
+            ..default()
+        };
+        for (i, p) in m.points().iter().enumerate() {
+            data.points[i] = p.point;
+            data.penetration = data.penetration.max(-p.separation);
+            data.normal_impulse += p.total_normal_impulse;
+            data.friction_impulse += p.total_tangent_impulse * sign;
+            data.impact_speed = data.impact_speed.max(p.approach_speed);
+        }
+        data
+    }
+}
+
+/// Two colliders started touching. As a message, one per pair with `collider1` the lower
+/// entity; as an entity event, on each collider with [`CollisionEventsEnabled`], which
+/// is then `collider1`.
+#[derive(Message, EntityEvent, Clone, Copy, Debug, PartialEq)]
+pub struct CollisionStart {
+    #[event_target]
+    pub collider1: Entity,
+    pub collider2: Entity,
+    /// The colliders' bodies: the collider itself, or `None` for a static collider.
+    pub body1: Option<Entity>,
+    pub body2: Option<Entity>,
+    /// One of them is a sensor: an overlap, not a contact.
+    pub sensor: bool,
+    pub contact: ContactData,
+}
+
+/// Two colliders stopped touching (or one lost its collider, or the pair's layers
+/// stopped matching). Sent like [`CollisionStart`]; never for a despawned collider.
+#[derive(Message, EntityEvent, Clone, Copy, Debug, PartialEq)]
+pub struct CollisionEnd {
+    #[event_target]
+    pub collider1: Entity,
+    pub collider2: Entity,
+    pub body1: Option<Entity>,
+    pub body2: Option<Entity>,
+    pub sensor: bool,
 }
 
 /// One body's side of a contact, for [`PhysicsWorld::contacts_of`].
@@ -77,41 +155,149 @@ impl PhysicsWorld {
     }
 }
 
-/// This step's touching pairs, reused every step.
-type MessageScratch = HashSet<(Entity, Entity)>;
+/// A pair that touched last step: the two colliders (lower entity first), whether each
+/// wants entity events and has a body, and whether a sensor is involved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct TouchingPair {
+    pub colliders: (Entity, Entity),
+    pub events: (bool, bool),
+    pub bodies: (bool, bool),
+    pub sensor: bool,
+}
 
-/// Compares this step's touching pairs with last step's and writes the messages. Pairs
-/// with a sleeping body keep their state: sleeping is not separating.
-pub fn write_collision_messages(
+impl TouchingPair {
+    fn flipped(self) -> Self {
+        fn swap<T>((a, b): (T, T)) -> (T, T) {
+            (b, a)
+        }
+        Self {
+            colliders: swap(self.colliders),
+            events: swap(self.events),
+            bodies: swap(self.bodies),
+            sensor: self.sensor,
+        }
+    }
+
+    fn body(entity: Entity, has: bool) -> Option<Entity> {
+        has.then_some(entity)
+    }
+
+    fn start(self, contact: ContactData) -> CollisionStart {
+        let (c1, c2) = self.colliders;
+        CollisionStart {
+            collider1: c1,
+            collider2: c2,
+            body1: Self::body(c1, self.bodies.0),
+            body2: Self::body(c2, self.bodies.1),
+            sensor: self.sensor,
+            contact,
+        }
+    }
+
+    fn end(self) -> CollisionEnd {
+        let (c1, c2) = self.colliders;
+        CollisionEnd {
+            collider1: c1,
+            collider2: c2,
+            body1: Self::body(c1, self.bodies.0),
+            body2: Self::body(c2, self.bodies.1),
+            sensor: self.sensor,
+        }
+    }
+}
+
+/// Scratch kept between steps: this step's reported pairs with their contact data, and
+/// a spare map to swap with [`PhysicsWorld::touching`].
+#[derive(Default)]
+pub struct ReportScratch {
+    now: Vec<(TouchingPair, ContactData)>,
+    spare: HashMap<(Entity, Entity), TouchingPair>,
+}
+
+/// Compares this step's touching pairs (of colliders with events enabled) with last
+/// step's, writes the messages and triggers the entity events.
+pub fn report_collisions(
     mut world: ResMut<PhysicsWorld>,
-    mut started: MessageWriter<CollisionStarted>,
-    mut ended: MessageWriter<CollisionEnded>,
-    mut scratch: Local<MessageScratch>,
+    mut started: MessageWriter<CollisionStart>,
+    mut ended: MessageWriter<CollisionEnd>,
+    mut commands: Commands,
+    entities: &Entities,
+    mut scratch: Local<ReportScratch>,
 ) {
     let world = &mut *world;
-    // Kept between steps (cleared, not reallocated).
-    let now = &mut *scratch;
+    let ReportScratch { now, spare } = &mut *scratch;
     now.clear();
-    for m in world
+    let contacts = world
         .manifolds
         .iter()
-        .filter(|m| PhysicsWorld::is_touching(m))
+        .filter(|m| PhysicsWorld::is_touching(m));
+    let overlaps = world
+        .sensor_overlaps
+        .iter()
+        .filter(|m| m.points().iter().any(|p| p.separation <= 0.0));
+    for (m, sensor) in contacts
+        .map(|m| (m, false))
+        .chain(overlaps.map(|m| (m, true)))
     {
-        let (a, b) = world.manifold_entities(m);
-        now.insert((a.min(b), a.max(b)));
+        let (a, b) = (
+            &world.colliders[m.a as usize],
+            &world.colliders[m.b as usize],
+        );
+        if !(a.filter.events || b.filter.events) {
+            continue;
+        }
+        let pair = TouchingPair {
+            colliders: (a.entity, b.entity),
+            events: (a.filter.events, b.filter.events),
+            bodies: (a.body != STATIC, b.body != STATIC),
+            sensor,
+        };
+        let flip = a.entity > b.entity;
+        let pair = if flip { pair.flipped() } else { pair };
+        now.push((pair, ContactData::of(m, flip)));
+    }
+    if now.is_empty() && world.touching.is_empty() {
+        return;
+    }
+    let previous = std::mem::replace(&mut world.touching, std::mem::take(spare));
+    let next = &mut world.touching;
+    next.clear();
+    for &(pair, contact) in now.iter() {
+        if !previous.contains_key(&pair.colliders) {
+            started.write(pair.start(contact));
+            trigger_both(&mut commands, pair, |p| p.start(contact));
+        }
+        next.insert(pair.colliders, pair);
     }
     let asleep = |e: Entity| world.fixed.get(e).is_some_and(|c| c.asleep);
-    for &(a, b) in &world.touching {
+    for (&(a, b), &pair) in previous.iter() {
+        if next.contains_key(&(a, b)) {
+            continue;
+        }
         if asleep(a) || asleep(b) {
-            now.insert((a, b));
-        } else if !now.contains(&(a, b)) {
-            ended.write(CollisionEnded { a, b });
+            // Sleeping is not separating.
+            next.insert((a, b), pair);
+        } else if entities.contains(a) && entities.contains(b) {
+            ended.write(pair.end());
+            trigger_both(&mut commands, pair, |p| p.end());
         }
     }
-    for &(a, b) in now.iter() {
-        if !world.touching.contains(&(a, b)) {
-            started.write(CollisionStarted { a, b });
-        }
+    *spare = previous;
+}
+
+/// Triggers `event` on each collider of the pair that asked for events, with itself as
+/// `collider1`.
+fn trigger_both<E: EntityEvent>(
+    commands: &mut Commands,
+    pair: TouchingPair,
+    event: impl Fn(TouchingPair) -> E,
+) where
+    E: for<'a> Event<Trigger<'a> = bevy::ecs::event::EntityTrigger>,
+{
+    if pair.events.0 {
+        commands.trigger(event(pair));
     }
-    std::mem::swap(&mut world.touching, now);
+    if pair.events.1 {
+        commands.trigger(event(pair.flipped()));
+    }
 }

@@ -20,6 +20,7 @@ pub mod collider;
 pub mod effects;
 pub mod events;
 pub mod interaction;
+pub mod layers;
 pub mod limits;
 pub mod plugin;
 pub mod scene;
@@ -44,7 +45,10 @@ pub mod prelude {
     };
     pub use crate::collider::Collider;
     pub use crate::effects::{Effects, GravityScale, LockRotation, Wind};
-    pub use crate::events::{CollisionEnded, CollisionStarted, Contact};
+    pub use crate::events::{
+        CollisionEnd, CollisionEventsEnabled, CollisionStart, Contact, ContactData,
+    };
+    pub use crate::layers::{CollisionLayers, LayerMask, PhysicsLayer, Sensor};
     pub use crate::plugin::{PhysicsSystems, TumblePlugin};
     pub use crate::settings::{GlobalForce, Gravity, Integrator, SleepSettings, SolverSettings};
     pub use crate::timings::StepTimings;

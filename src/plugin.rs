@@ -67,8 +67,8 @@ impl Plugin for TumblePlugin {
             .init_resource::<prepare::SpawnCounter>()
             .add_observer(prepare::record_removal)
             .add_observer(prepare::number_collider)
-            .add_message::<events::CollisionStarted>()
-            .add_message::<events::CollisionEnded>();
+            .add_message::<events::CollisionStart>()
+            .add_message::<events::CollisionEnd>();
         app.register_type::<RigidBody>()
             .register_type::<Velocity>()
             .register_type::<Mass>()
@@ -155,7 +155,7 @@ impl Plugin for TumblePlugin {
                 (
                     stamp::<6>,
                     writeback::writeback_bodies,
-                    events::write_collision_messages,
+                    events::report_collisions,
                 )
                     .chain()
                     .in_set(S::Writeback),

@@ -5,6 +5,8 @@ use bevy::prelude::*;
 
 use crate::body::RigidBody;
 use crate::collider::Shape;
+use crate::events::TouchingPair;
+use crate::layers::CollisionLayers;
 use crate::step::broad_phase::FixedSet;
 use crate::step::narrow_phase::Manifold;
 use crate::step::solve::ContactConstraint;
@@ -90,6 +92,23 @@ impl BodyState {
     }
 }
 
+/// How a collider takes part in contacts: its [`CollisionLayers`], whether it is a
+/// [`Sensor`](crate::layers::Sensor), whether it asked for collision events.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ContactFilter {
+    pub layers: CollisionLayers,
+    pub sensor: bool,
+    pub events: bool,
+}
+
+impl ContactFilter {
+    /// Whether two colliders' pair is looked at all: their layers interact and they are
+    /// not both sensors.
+    pub fn allows(&self, other: &Self) -> bool {
+        self.layers.interacts_with(other.layers) && !(self.sensor && other.sensor)
+    }
+}
+
 /// One collider of this step. Dynamic and kinematic colliders point at their body.
 #[derive(Clone, Copy, Debug)]
 pub struct ColliderEntry {
@@ -107,6 +126,8 @@ pub struct ColliderEntry {
     pub rot: Quat,
     pub friction: f32,
     pub restitution: f32,
+    /// Layers, sensor, events: what decides whether and how it touches others.
+    pub filter: ContactFilter,
     /// Bounds swept over the step's free motion and fattened by the speculative margin.
     pub aabb_min: Vec3,
     pub aabb_max: Vec3,
@@ -130,6 +151,9 @@ pub struct PhysicsWorld {
     pub pairs: Vec<(u32, u32)>,
     /// Contact manifolds from the narrow phase.
     pub manifolds: Vec<Manifold>,
+    /// Overlaps with a [`Sensor`](crate::layers::Sensor) this step: manifolds the solver
+    /// never sees, only the collision events.
+    pub sensor_overlaps: Vec<Manifold>,
     /// Per-point contact constraints built by the solver.
     pub constraints: Vec<ContactConstraint>,
     /// Last step's accumulated impulses by entity pair, for warm starting.
@@ -137,7 +161,7 @@ pub struct PhysicsWorld {
     /// Sleeping bodies that an awake body touched this step: they wake.
     pub wake: Vec<Entity>,
     /// Pairs (ordered by entity) that touched last step, for the collision messages.
-    pub touching: bevy::platform::collections::HashSet<(Entity, Entity)>,
+    pub touching: HashMap<(Entity, Entity), TouchingPair>,
     /// The fixed step of the current step, seconds.
     pub dt: f32,
     /// The contact solver's substep last step, s (0 before the first contact), which

@@ -49,6 +49,7 @@ fn scene(seed: u64) -> Vec<ColliderEntry> {
                 rot,
                 friction: 0.5,
                 restitution: 0.0,
+                filter: Default::default(),
                 aabb_min: lo - Vec3::splat(0.02),
                 aabb_max: hi + Vec3::splat(0.02),
             }

@@ -4,8 +4,9 @@
 //! and are looked at again only when something about them changes:
 //! - a new static collider or a body that fell asleep (no marker yet);
 //! - a marked entity whose `Transform`, `Collider`, `RigidBody`, `Friction`,
-//!   `Restitution`, `Velocity` or `ExternalForce` changed (for a sleeper that is the
-//!   user's hand, and it wakes);
+//!   `Restitution`, `Velocity`, `ExternalForce`, `CollisionLayers`, `Sensor` or
+//!   `CollisionEventsEnabled` changed (for a sleeper that is the user's hand, and it
+//!   wakes);
 //! - a removed `Sleeping` (woken), `Collider`, `RigidBody` or marker, or a despawn:
 //!   recorded by observers the moment it happens, whatever the frame pacing
 //!   ([`PendingRechecks`]);
@@ -23,10 +24,12 @@ use bevy::ecs::query::QueryData;
 use bevy::prelude::*;
 
 use super::lifecycle::PendingRechecks;
-use super::{fixed_entry, order_key, reject, validate_static};
+use super::{FilterItem, fixed_entry, order_key, reject, validate_static};
 use crate::body::*;
 use crate::collider::Collider;
 use crate::effects::Effects;
+use crate::events::CollisionEventsEnabled;
+use crate::layers::{CollisionLayers, Sensor};
 use crate::settings::{GlobalForce, SolverSettings};
 use crate::world::PhysicsWorld;
 
@@ -47,6 +50,7 @@ pub struct FixedItem {
     marked: Has<InFixedSet>,
     rejected: Has<PhysicsRejected>,
     order: Option<&'static SpawnOrder>,
+    filter: FilterItem,
 }
 
 /// Marked entities with a change that may move them, resize them or wake them.
@@ -60,6 +64,9 @@ type ChangedFilter = (
         Changed<Restitution>,
         Changed<Velocity>,
         Changed<ExternalForce>,
+        Changed<CollisionLayers>,
+        Changed<Sensor>,
+        Changed<CollisionEventsEnabled>,
     )>,
 );
 
@@ -165,11 +172,14 @@ pub fn sync_fixed_set(
             Some(c) => match validate_static(item.transform, c, item.friction, item.restitution) {
                 Ok(()) => {
                     let (tf, key) = (item.transform, order_key(entity, item.order));
-                    let entry = fixed_entry(entity, key, tf, c, item.friction, item.restitution);
+                    let material = (item.friction, item.restitution, item.filter.get());
+                    let entry = fixed_entry(entity, key, tf, c, material);
                     world.fixed.insert(entry(item.sleeping));
                     let new = world.fixed.get(entity).copied();
+                    // Moved, resized, or stopped touching some layers: what slept on it
+                    // may have lost its support.
                     if let (Some(o), Some(n)) = (old, new)
-                        && (o.pos, o.rot, o.shape) != (n.pos, n.rot, n.shape)
+                        && (o.pos, o.rot, o.shape, o.filter) != (n.pos, n.rot, n.shape, n.filter)
                     {
                         disturbed.push((o.aabb_min, o.aabb_max));
                         disturbed.push((n.aabb_min, n.aabb_max));

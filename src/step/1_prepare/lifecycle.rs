@@ -16,11 +16,14 @@ use bevy::prelude::*;
 use crate::body::*;
 use crate::collider::Collider;
 use crate::effects::{GravityScale, LockRotation};
+use crate::events::CollisionEventsEnabled;
+use crate::layers::{CollisionLayers, Sensor};
 
 use super::InFixedSet;
 
 /// Entities that lost a component the fixed set depends on since the last step
-/// (`Sleeping`, `Collider`, `RigidBody`, the [`InFixedSet`] marker), or were despawned.
+/// (`Sleeping`, `Collider`, `RigidBody`, the [`InFixedSet`] marker, `CollisionLayers`,
+/// `Sensor`, `CollisionEventsEnabled`), or were despawned.
 /// Filled by observers at the moment of removal; drained by the next step.
 #[derive(Resource, Default, Debug)]
 pub struct PendingRechecks {
@@ -29,7 +32,18 @@ pub struct PendingRechecks {
 
 /// Observer: a component the fixed set depends on was removed (or its entity despawned).
 pub fn record_removal(
-    event: On<Remove, (Sleeping, Collider, RigidBody, InFixedSet)>,
+    event: On<
+        Remove,
+        (
+            Sleeping,
+            Collider,
+            RigidBody,
+            InFixedSet,
+            CollisionLayers,
+            Sensor,
+            CollisionEventsEnabled,
+        ),
+    >,
     mut pending: ResMut<PendingRechecks>,
 ) {
     pending.entities.push(event.event().entity);

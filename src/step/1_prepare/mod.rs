@@ -14,9 +14,12 @@ use bevy::prelude::*;
 use crate::body::*;
 use crate::collider::{Collider, Shape};
 use crate::effects::{Effects, GravityScale, LockRotation};
+use crate::events::CollisionEventsEnabled;
+use crate::layers::{CollisionLayers, Sensor};
 use crate::settings::SolverSettings;
 use crate::world::{
-    BodyState, ColliderEntry, ForceModel, PhysicsWorld, STATIC, SolverBody, world_inv_inertia,
+    BodyState, ColliderEntry, ContactFilter, ForceModel, PhysicsWorld, STATIC, SolverBody,
+    world_inv_inertia,
 };
 
 pub use fixed::{InFixedSet, sync_fixed_set};
@@ -45,6 +48,26 @@ pub struct BodyItem {
     gravity_scale: Option<&'static GravityScale>,
     lock_rotation: Has<LockRotation>,
     order: Option<&'static SpawnOrder>,
+    filter: FilterItem,
+}
+
+/// What decides whether and how a collider touches others.
+#[derive(QueryData)]
+pub struct FilterItem {
+    layers: Option<&'static CollisionLayers>,
+    sensor: Has<Sensor>,
+    events: Has<CollisionEventsEnabled>,
+}
+
+impl FilterItemItem<'_, '_> {
+    /// The collider's [`ContactFilter`].
+    pub fn get(&self) -> ContactFilter {
+        ContactFilter {
+            layers: self.layers.copied().unwrap_or_default(),
+            sensor: self.sensor,
+            events: self.events,
+        }
+    }
 }
 
 /// Which entities prepare gathers each step: bodies that are not asleep, not already in
@@ -77,6 +100,7 @@ pub fn prepare_bodies(
     // Filled by the collision stages only when collisions are on.
     world.pairs.clear();
     world.manifolds.clear();
+    world.sensor_overlaps.clear();
 
     for item in &query {
         let entity = item.entity;
@@ -86,7 +110,8 @@ pub fn prepare_bodies(
             commands.entity(entity).insert(InFixedSet);
             if let Some(c) = item.collider {
                 let key = order_key(entity, item.order);
-                let entry = fixed_entry(entity, key, &tf, c, item.friction, item.restitution);
+                let material = (item.friction, item.restitution, item.filter.get());
+                let entry = fixed_entry(entity, key, &tf, c, material);
                 match validate_static(&tf, c, item.friction, item.restitution) {
                     Ok(()) => world.fixed.insert(entry(false)),
                     Err(e) => reject(&mut commands, entity, e),
@@ -146,6 +171,7 @@ pub fn prepare_bodies(
                 rot,
                 friction: item.friction.map_or(DEFAULT_FRICTION, |f| f.0),
                 restitution: item.restitution.map_or(0.0, |r| r.0),
+                filter: item.filter.get(),
                 aabb_min: Vec3::ZERO,
                 aabb_max: Vec3::ZERO,
             });
@@ -186,8 +212,7 @@ fn fixed_entry(
     key: u64,
     tf: &Transform,
     collider: &Collider,
-    friction: Option<&Friction>,
-    restitution: Option<&Restitution>,
+    (friction, restitution, filter): (Option<&Friction>, Option<&Restitution>, ContactFilter),
 ) -> impl Fn(bool) -> ColliderEntry {
     let entry = ColliderEntry {
         entity,
@@ -199,6 +224,7 @@ fn fixed_entry(
         rot: tf.rotation.normalize(),
         friction: friction.map_or(DEFAULT_FRICTION, |f| f.0),
         restitution: restitution.map_or(0.0, |r| r.0),
+        filter,
         aabb_min: Vec3::ZERO,
         aabb_max: Vec3::ZERO,
     };

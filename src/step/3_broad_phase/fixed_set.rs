@@ -175,6 +175,7 @@ mod tests {
             rot: Quat::IDENTITY,
             friction: 0.5,
             restitution: 0.0,
+            filter: Default::default(),
             aabb_min: Vec3::ZERO,
             aabb_max: Vec3::ZERO,
         }

@@ -20,6 +20,14 @@ pub struct ContactPoint {
     pub normal_impulse: f32,
     /// Accumulated friction impulse in the world frame.
     pub tangent_impulse: Vec3,
+    /// Normal impulse over the whole last step, N·s (every substep's, restitution's),
+    /// for colliders with collision events; 0 otherwise.
+    pub total_normal_impulse: f32,
+    /// Friction impulse over the whole last step, world frame, N·s (as above).
+    pub total_tangent_impulse: Vec3,
+    /// How fast the surfaces approached when this point first pushed in the last step,
+    /// m/s (0 if they were not approaching): the speed of an impact.
+    pub approach_speed: f32,
 }
 
 /// The contact between two colliders: one normal, up to [`MAX_POINTS`] points.

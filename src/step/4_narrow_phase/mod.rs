@@ -171,6 +171,17 @@ pub fn collide_pairs(
             break;
         }
         let (a, b) = (&world.colliders[ia as usize], &world.colliders[ib as usize]);
+        // Filtered out by layers, or two sensors: not even a manifold.
+        if !a.filter.allows(&b.filter) {
+            continue;
+        }
+        if a.filter.sensor || b.filter.sensor {
+            // Only overlap counts, and nobody wakes: no margin, no contact response.
+            if let Some(m) = collide(a, ia, b, ib, 0.0) {
+                world.sensor_overlaps.push(m);
+            }
+            continue;
+        }
         let (da, db) = (is_dynamic(world, a.body), is_dynamic(world, b.body));
         if !da && !db {
             continue;

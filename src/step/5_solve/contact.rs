@@ -41,6 +41,9 @@ pub struct ConstraintPoint {
     pub tangent_impulse: Vec2,
     /// Largest normal impulse this step; restitution only acts on points that pushed.
     pub max_normal_impulse: f32,
+    /// Impulses over the whole step, N·s (summed only for constraints that `report`).
+    pub total_normal: f32,
+    pub total_tangent: Vec2,
     /// Normal relative velocity at the start of the step, m/s.
     pub prepared_velocity: f32,
     /// Normal relative velocity when the point first pushed, m/s: the approach speed
@@ -103,6 +106,8 @@ pub struct ContactConstraint {
     /// world inertia changes as it turns: the rows are refreshed every substep
     /// ([`refresh_rows`]).
     pub refresh: bool,
+    /// A collider here asked for collision events: sum the step's impulses for them.
+    pub report: bool,
     pub friction: f32,
     pub restitution: f32,
     /// How much faster than at the start of the step a point may be approaching when it
@@ -287,6 +292,7 @@ pub fn prepare_constraints(
             turn_b: spin[1] && !matches!(cb.shape, Shape::Sphere { .. }),
             spin,
             refresh: (spin[0] && anisotropic(ca.body)) || (spin[1] && anisotropic(cb.body)),
+            report: ca.filter.events || cb.filter.events,
             friction: if stiffness.friction { m.friction } else { 0.0 },
             restitution: m.restitution,
             approach_gain: stiffness.gravity * stiffness.dt,
@@ -316,6 +322,8 @@ pub fn prepare_constraints(
                 normal_impulse: p.normal_impulse,
                 tangent_impulse: Vec2::new(p.tangent_impulse.dot(t1), p.tangent_impulse.dot(t2)),
                 max_normal_impulse: 0.0,
+                total_normal: 0.0,
+                total_tangent: Vec2::ZERO,
                 prepared_velocity: 0.0,
                 relative_velocity: 0.0,
             };
@@ -348,6 +356,17 @@ pub fn refresh_rows(bodies: &[SolverBody], constraints: &mut [ContactConstraint]
             }
             p.normal_mass = mass_of(linear + p.normal_row.inv_mass(c.spin));
             p.tangent_mass = isotropic_tangent_mass(linear, &p.tangent_rows, c.spin);
+        }
+    }
+}
+
+/// Adds each point's accumulated impulses (what this substep applied) to the step's
+/// totals, for constraints that report them. Run once per substep, after relaxing.
+pub fn sum_impulses(constraints: &mut [ContactConstraint]) {
+    for c in constraints.iter_mut().filter(|c| c.report) {
+        for p in c.points[..c.len].iter_mut() {
+            p.total_normal += p.normal_impulse;
+            p.total_tangent += p.tangent_impulse;
         }
     }
 }

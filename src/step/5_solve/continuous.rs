@@ -40,7 +40,8 @@ pub fn sweep_against_fixed(
     let slop = CONTINUOUS_SLOP * margin;
     for ci in 0..world.colliders.len() {
         let c = world.colliders[ci];
-        if c.body == STATIC || c.asleep || !world.bodies[c.body as usize].is_dynamic() {
+        let fixed_or_asleep = c.body == STATIC || c.asleep;
+        if fixed_or_asleep || c.filter.sensor || !world.bodies[c.body as usize].is_dynamic() {
             continue;
         }
         let i = c.body as usize;
@@ -64,6 +65,9 @@ pub fn sweep_against_fixed(
         let mut hit: Option<(f32, Vec3)> = None;
         for &k in found.iter() {
             let f = &world.fixed.entries()[k as usize];
+            if !c.filter.allows(&f.filter) || c.filter.sensor || f.filter.sensor {
+                continue;
+            }
             let depth = |t: f32| depth_into(&at(t), f);
             let limit = depth(0.0).0.max(0.0) + slop;
             let (d1, n) = depth(1.0);

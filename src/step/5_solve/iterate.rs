@@ -217,6 +217,7 @@ pub fn apply_restitution(
             let dl = new - p.normal_impulse;
             p.normal_impulse = new;
             p.max_normal_impulse = p.max_normal_impulse.max(new);
+            p.total_normal += dl;
             apply_normal(&mut a, &mut b, c.normal, &p.normal_row, dl, c.spin);
         }
         store(bodies, c.a, a);
@@ -243,6 +244,7 @@ pub fn stop_approach(bodies: &mut [SolverBody], constraints: &mut [ContactConstr
             }
             let dl = -p.normal_mass * vn;
             p.normal_impulse += dl;
+            p.total_normal += dl;
             p.max_normal_impulse = p.max_normal_impulse.max(p.normal_impulse);
             apply_normal(&mut a, &mut b, c.normal, &p.normal_row, dl, c.spin);
         }

@@ -18,7 +18,7 @@ use crate::world::{PhysicsWorld, STATIC, is_isotropic, world_inv_inertia};
 
 pub use contact::{
     AngularRow, ConstraintPoint, ContactConstraint, ContactParams, prepare_constraints,
-    refresh_rows,
+    refresh_rows, sum_impulses,
 };
 pub use continuous::{CONTINUOUS_SLOP, sweep_against_fixed};
 pub use iterate::{apply_restitution, solve, stop_approach, warm_start};
@@ -56,6 +56,8 @@ pub struct SolverScratch {
     fixed_constraints: usize,
     /// Some constraint has a turning anisotropic body (see [`refresh_rows`]).
     refresh: bool,
+    /// Some constraint reports its impulses (a collider with collision events).
+    report: bool,
 }
 
 /// Solves every contact of this step.
@@ -162,6 +164,7 @@ fn run_stage(
             );
             scratch.iterations = iterations_for(settings.iterations, ratio);
             scratch.refresh = world.constraints.iter().any(|c| c.refresh);
+            scratch.report = world.constraints.iter().any(|c| c.report);
         }
         SolverStage::IntegrateVelocities => {
             scratch.free.clear();
@@ -190,6 +193,10 @@ fn run_stage(
             for _ in 0..iterations {
                 solve(bodies, &mut world.constraints, h, use_bias);
                 solve(bodies, &mut world.constraints[..fixed], h, use_bias);
+            }
+            // The substep's impulses are final once relaxed.
+            if !use_bias && scratch.report {
+                sum_impulses(&mut world.constraints);
             }
         }
         SolverStage::IntegratePositions => {
@@ -307,10 +314,13 @@ fn collect_active_bodies(world: &mut PhysicsWorld, active: &mut Vec<u32>) {
 fn store_impulses(world: &mut PhysicsWorld) {
     for c in &world.constraints {
         let m = &mut world.manifolds[c.manifold as usize];
+        let world_frame = |t: Vec2| c.tangent1 * t.x + c.tangent2 * t.y;
         for (mp, cp) in m.points_mut().iter_mut().zip(&c.points) {
             mp.normal_impulse = cp.normal_impulse;
-            mp.tangent_impulse =
-                c.tangent1 * cp.tangent_impulse.x + c.tangent2 * cp.tangent_impulse.y;
+            mp.tangent_impulse = world_frame(cp.tangent_impulse);
+            mp.total_normal_impulse = cp.total_normal;
+            mp.total_tangent_impulse = world_frame(cp.total_tangent);
+            mp.approach_speed = (-cp.relative_velocity).max(0.0);
         }
     }
     world.impulse_cache.clear();
