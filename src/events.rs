@@ -1,7 +1,9 @@
 //! Collision events and reading a body's contacts.
 //!
 //! Two colliders *touch* when a contact point between them overlaps or pushed this step
-//! (for a [`Sensor`](crate::layers::Sensor): when they overlap). Events are opt-in per
+//! (for a [`Sensor`](crate::layers::Sensor): when they overlap), and keep touching while
+//! a point stays within a slop of 5 mm (a quarter of the speculative margin), so a
+//! landing that rebounds a millimetre is one collision. Events are opt-in per
 //! collider, as in avian3d and bevy_rapier3d: a pair is reported when either collider
 //! has [`CollisionEventsEnabled`], so a scene with thousands of contacts and no one
 //! listening pays one flag test per contact.
@@ -22,7 +24,9 @@ use bevy::ecs::entity::Entities;
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 
+use crate::settings::SolverSettings;
 use crate::step::narrow_phase::{MAX_POINTS, Manifold};
+use crate::step::solve::CONTINUOUS_SLOP;
 use crate::world::{PhysicsWorld, STATIC};
 
 /// Opts a collider in to [`CollisionStart`] / [`CollisionEnd`]: as messages for its
@@ -211,6 +215,7 @@ impl TouchingPair {
 #[derive(Default)]
 pub struct ReportScratch {
     now: Vec<(TouchingPair, ContactData)>,
+    ends: Vec<TouchingPair>,
     spare: HashMap<(Entity, Entity), TouchingPair>,
 }
 
@@ -222,15 +227,25 @@ pub fn report_collisions(
     mut ended: MessageWriter<CollisionEnd>,
     mut commands: Commands,
     entities: &Entities,
+    settings: Res<SolverSettings>,
     mut scratch: Local<ReportScratch>,
 ) {
     let world = &mut *world;
-    let ReportScratch { now, spare } = &mut *scratch;
+    let ReportScratch { now, ends, spare } = &mut *scratch;
     now.clear();
-    let contacts = world
-        .manifolds
-        .iter()
-        .filter(|m| PhysicsWorld::is_touching(m));
+    // A pair that touched stays touching while a point is within the slop: a landing
+    // that rebounds a millimetre for a step is one collision, not three events.
+    let slop = CONTINUOUS_SLOP * settings.speculative_margin;
+    let previous = &world.touching;
+    let colliders = &world.colliders;
+    let contacts = world.manifolds.iter().filter(|m| {
+        PhysicsWorld::is_touching(m)
+            || (m.points().iter().any(|p| p.separation <= slop)
+                && previous.contains_key(&ordered(
+                    colliders[m.a as usize].entity,
+                    colliders[m.b as usize].entity,
+                )))
+    });
     let overlaps = world
         .sensor_overlaps
         .iter()
@@ -269,20 +284,32 @@ pub fn report_collisions(
         }
         next.insert(pair.colliders, pair);
     }
-    let asleep = |e: Entity| world.fixed.get(e).is_some_and(|c| c.asleep);
+    // A pair of two fixed colliders (static or asleep) is not looked at: it keeps its
+    // state, since sleeping is not separating. A pair with an awake side was.
+    let fixed = |e: Entity| world.fixed.contains(e);
     for (&(a, b), &pair) in previous.iter() {
         if next.contains_key(&(a, b)) {
             continue;
         }
-        if asleep(a) || asleep(b) {
-            // Sleeping is not separating.
+        if fixed(a) && fixed(b) {
             next.insert((a, b), pair);
         } else if entities.contains(a) && entities.contains(b) {
-            ended.write(pair.end());
-            trigger_both(&mut commands, pair, |p| p.end());
+            ends.push(pair);
         }
     }
+    // In a fixed order, not the map's.
+    ends.sort_unstable_by_key(|p| p.colliders);
+    for &pair in ends.iter() {
+        ended.write(pair.end());
+        trigger_both(&mut commands, pair, |p| p.end());
+    }
+    ends.clear();
     *spare = previous;
+}
+
+/// The pair's key: lower entity first.
+fn ordered(a: Entity, b: Entity) -> (Entity, Entity) {
+    (a.min(b), a.max(b))
 }
 
 /// Triggers `event` on each collider of the pair that asked for events, with itself as
