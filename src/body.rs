@@ -91,6 +91,86 @@ pub struct ExternalForce {
     pub torque: Vec3,
 }
 
+impl ExternalForce {
+    /// A force (N) at the centre of mass.
+    pub fn new(force: Vec3) -> Self {
+        Self {
+            force,
+            torque: Vec3::ZERO,
+        }
+    }
+
+    /// A force (N) applied at a world `point` of a body whose centre of mass is at
+    /// `center` (its `Transform::translation`): the force, and the torque
+    /// (point − center) × force, so a push off-centre also turns the body.
+    pub fn at_point(force: Vec3, point: Vec3, center: Vec3) -> Self {
+        Self {
+            force,
+            torque: (point - center).cross(force),
+        }
+    }
+
+    /// Adds a force (N) at a world `point` (see [`at_point`](Self::at_point)).
+    pub fn apply_at_point(&mut self, force: Vec3, point: Vec3, center: Vec3) -> &mut Self {
+        let f = Self::at_point(force, point, center);
+        self.force += f.force;
+        self.torque += f.torque;
+        self
+    }
+}
+
+/// A one-shot impulse (N·s) and angular impulse (N·m·s), world frame: at the start of
+/// the next physics step the body's velocity changes by `impulse / m` and its angular
+/// velocity by `I⁻¹ · torque_impulse`, and the component is zeroed. Impulses added in
+/// frames that run no step add up until one does; under any frame pacing each is applied
+/// exactly once. It wakes a sleeping body. Static and kinematic bodies ignore it; a
+/// non-finite impulse, or one that would take the body past the speed limits, is logged
+/// and dropped.
+#[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq)]
+#[reflect(Component)]
+pub struct ExternalImpulse {
+    pub impulse: Vec3,
+    pub torque_impulse: Vec3,
+}
+
+impl ExternalImpulse {
+    /// An impulse (N·s) at the centre of mass: a jump, a shot.
+    pub fn new(impulse: Vec3) -> Self {
+        Self {
+            impulse,
+            torque_impulse: Vec3::ZERO,
+        }
+    }
+
+    /// An impulse (N·s) at a world `point` of a body whose centre of mass is at `center`:
+    /// the impulse, and the angular impulse (point − center) × impulse.
+    pub fn at_point(impulse: Vec3, point: Vec3, center: Vec3) -> Self {
+        Self {
+            impulse,
+            torque_impulse: (point - center).cross(impulse),
+        }
+    }
+
+    /// Adds an impulse (N·s) at the centre of mass.
+    pub fn apply(&mut self, impulse: Vec3) -> &mut Self {
+        self.impulse += impulse;
+        self
+    }
+
+    /// Adds an impulse (N·s) at a world `point` (see [`at_point`](Self::at_point)).
+    pub fn apply_at_point(&mut self, impulse: Vec3, point: Vec3, center: Vec3) -> &mut Self {
+        let j = Self::at_point(impulse, point, center);
+        self.impulse += j.impulse;
+        self.torque_impulse += j.torque_impulse;
+        self
+    }
+
+    /// Whether there is anything to apply.
+    pub fn is_zero(&self) -> bool {
+        self.impulse == Vec3::ZERO && self.torque_impulse == Vec3::ZERO
+    }
+}
+
 /// Linear drag: acceleration −c·v (c in 1/s). Terminal velocity under gravity is g/c.
 #[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq)]
 #[reflect(Component)]

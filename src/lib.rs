@@ -40,8 +40,8 @@ pub use world::PhysicsWorld;
 /// Everything a game needs: `use tumble::prelude::*;`
 pub mod prelude {
     pub use crate::body::{
-        AngularDamping, ExternalForce, Friction, LinearDamping, Mass, PhysicsRejected, Restitution,
-        RigidBody, SleepTimer, Sleeping, Velocity,
+        AngularDamping, ExternalForce, ExternalImpulse, Friction, LinearDamping, Mass,
+        PhysicsRejected, Restitution, RigidBody, SleepTimer, Sleeping, Velocity,
     };
     pub use crate::collider::Collider;
     pub use crate::effects::{Effects, GravityScale, LockRotation, Wind};

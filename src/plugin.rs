@@ -117,6 +117,7 @@ impl Plugin for TumblePlugin {
                     prepare::validate_settings,
                     prepare::readmit_rejected,
                     prepare::sync_fixed_set,
+                    prepare::apply_impulses,
                     prepare::prepare_bodies,
                 )
                     .chain()

@@ -68,6 +68,23 @@ pub struct BodyState {
     pub in_contact: bool,
     /// How long it has been slow enough to sleep, s.
     pub sleep_time: f32,
+    /// A kinematic body moved this step by the user's Transform (see [`KinematicPose`]),
+    /// and the target it is still on its way to after this step.
+    pub driven: bool,
+    pub target: Option<(Vec3, Quat)>,
+}
+
+/// The pose tumble wrote to a kinematic body's Transform at the end of a step, and
+/// whether the user's Transform drove it there. Next step, a Transform that differs is
+/// the user's move.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct KinematicPose {
+    pub pos: Vec3,
+    pub rot: Quat,
+    pub driven: bool,
+    /// Where the user's Transform asked it to be, when a frame's steps are not over yet
+    /// (the Transform now holds the pose of this step, not the target).
+    pub target: Option<(Vec3, Quat)>,
 }
 
 /// Whether principal inverse inertias are the same about every axis (a sphere, a cube,
@@ -160,6 +177,8 @@ pub struct PhysicsWorld {
     pub impulse_cache: HashMap<(Entity, Entity), Manifold>,
     /// Sleeping bodies that an awake body touched this step: they wake.
     pub wake: Vec<Entity>,
+    /// Kinematic bodies' poses as written at the end of the last step.
+    pub kinematic_poses: HashMap<Entity, KinematicPose>,
     /// Pairs (ordered by entity) that touched last step, for the collision messages.
     pub touching: HashMap<(Entity, Entity), TouchingPair>,
     /// The fixed step of the current step, seconds.

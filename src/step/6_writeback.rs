@@ -5,7 +5,7 @@
 use bevy::prelude::*;
 
 use crate::body::{PhysicsRejected, RigidBody, Velocity};
-use crate::world::PhysicsWorld;
+use crate::world::{KinematicPose, PhysicsWorld};
 
 pub fn writeback_bodies(
     mut commands: Commands,
@@ -41,5 +41,15 @@ pub fn writeback_bodies(
         tf.rotation = rot;
         vel.linear = s.v;
         vel.angular = s.w;
+        if body.kind == RigidBody::Kinematic {
+            let (driven, target) = (body.driven, body.target);
+            let pose = KinematicPose {
+                pos,
+                rot,
+                driven,
+                target,
+            };
+            world.kinematic_poses.insert(body.entity, pose);
+        }
     }
 }

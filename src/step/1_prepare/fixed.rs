@@ -4,7 +4,8 @@
 //! and are looked at again only when something about them changes:
 //! - a new static collider or a body that fell asleep (no marker yet);
 //! - a marked entity whose `Transform`, `Collider`, `RigidBody`, `Friction`,
-//!   `Restitution`, `Velocity`, `ExternalForce`, `CollisionLayers`, `Sensor` or
+//!   `Restitution`, `Velocity`, `ExternalForce`, `ExternalImpulse`, `CollisionLayers`,
+//!   `Sensor` or
 //!   `CollisionEventsEnabled` changed (for a sleeper that is the user's hand, and it
 //!   wakes);
 //! - a removed `Sleeping` (woken), `Collider`, `RigidBody` or marker, or a despawn:
@@ -64,6 +65,7 @@ type ChangedFilter = (
         Changed<Restitution>,
         Changed<Velocity>,
         Changed<ExternalForce>,
+        Changed<ExternalImpulse>,
         Changed<CollisionLayers>,
         Changed<Sensor>,
         Changed<CollisionEventsEnabled>,

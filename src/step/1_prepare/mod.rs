@@ -4,6 +4,7 @@
 //! with [`PhysicsRejected`], and reported once in the log by entity and field.
 
 mod fixed;
+mod impulses;
 mod lifecycle;
 mod settings;
 mod validate;
@@ -18,11 +19,12 @@ use crate::events::CollisionEventsEnabled;
 use crate::layers::{CollisionLayers, Sensor};
 use crate::settings::SolverSettings;
 use crate::world::{
-    BodyState, ColliderEntry, ContactFilter, ForceModel, PhysicsWorld, STATIC, SolverBody,
-    world_inv_inertia,
+    BodyState, ColliderEntry, ContactFilter, ForceModel, KinematicPose, PhysicsWorld, STATIC,
+    SolverBody, world_inv_inertia,
 };
 
 pub use fixed::{InFixedSet, sync_fixed_set};
+pub use impulses::apply_impulses;
 pub use lifecycle::{
     PendingRechecks, SpawnCounter, number_collider, readmit_rejected, record_removal,
 };
@@ -102,6 +104,13 @@ pub fn prepare_bodies(
     world.manifolds.clear();
     world.sensor_overlaps.clear();
 
+    // Kinematic poses tumble wrote last step: a kinematic body whose Transform differs
+    // was moved by the user, and gets there over the steps left in this frame.
+    let last_poses = std::mem::take(&mut world.kinematic_poses);
+    // Steps left in this frame, this one included (in whole nanoseconds: f32 seconds
+    // would round 16.666666 ms / 16.666667 ms down to 0).
+    let whole = time.overstep().as_nanos() / time.timestep().as_nanos().max(1);
+    let steps_left = 1.0 + whole as f32;
     for item in &query {
         let entity = item.entity;
         let tf = *item.transform;
@@ -134,12 +143,27 @@ pub fn prepare_bodies(
             reject(&mut commands, entity, e);
             continue;
         }
-        let rot = tf.rotation.normalize();
+        let mut rot = tf.rotation.normalize();
+        let mut pos = tf.translation;
+        let mut vel = vel;
+        let (mut driven, mut target) = (false, None);
+        if kind == RigidBody::Kinematic
+            && let Some(last) = last_poses.get(&entity)
+        {
+            match drive_kinematic(last, &tf, world.dt * steps_left, settings.max_linear_speed) {
+                Drive::ToTarget(v, goal) => {
+                    (pos, rot, vel, driven) = (last.pos, last.rot, v, true);
+                    target = (steps_left > 1.0).then_some(goal);
+                }
+                Drive::Stopped => vel = Velocity::ZERO,
+                Drive::ByVelocity => {}
+            }
+        }
         let index = world.bodies.len() as u32;
         let input = BodyInput {
             entity,
             kind,
-            pos: tf.translation,
+            pos,
             rot,
             vel,
             mass: item.mass,
@@ -158,6 +182,8 @@ pub fn prepare_bodies(
             }
         }
         state.sleep_time = item.sleep_timer.map_or(0.0, |t| t.0);
+        state.driven = driven;
+        state.target = target;
         world.bodies.push(state);
         world.solver_bodies.push(solver);
         if let Some(shape) = shape {
@@ -167,7 +193,7 @@ pub fn prepare_bodies(
                 body: index,
                 asleep: false,
                 shape,
-                pos: tf.translation,
+                pos,
                 rot,
                 friction: item.friction.map_or(DEFAULT_FRICTION, |f| f.0),
                 restitution: item.restitution.map_or(0.0, |r| r.0),
@@ -177,6 +203,47 @@ pub fn prepare_bodies(
             });
         }
     }
+}
+
+/// How a kinematic body moves this step.
+enum Drive {
+    /// Toward the user's Transform (the pose given) from last step's pose, at this
+    /// velocity.
+    ToTarget(Velocity, (Vec3, Quat)),
+    /// It was moved by its Transform last step and not since: it stops there.
+    Stopped,
+    /// Moved by its `Velocity`, as usual.
+    ByVelocity,
+}
+
+/// Reads a kinematic body's Transform against the pose tumble wrote last step (`last`).
+/// A change is the user's: the body travels there over `span` seconds (the steps left in
+/// this frame), with the velocity that implies, so what stands on it is carried along.
+/// No change while a frame's target is not reached yet: it carries on toward it. A move
+/// faster than `max_speed` is a teleport: it goes there at once, with its own `Velocity`.
+fn drive_kinematic(last: &KinematicPose, tf: &Transform, span: f32, max_speed: f32) -> Drive {
+    let unchanged = last.pos == tf.translation && last.rot == tf.rotation;
+    let (goal_pos, goal_rot) = match (unchanged, last.target) {
+        (false, _) => (tf.translation, tf.rotation.normalize()),
+        (true, Some(target)) => target,
+        (true, None) if last.driven => return Drive::Stopped,
+        (true, None) => return Drive::ByVelocity,
+    };
+    let linear = (goal_pos - last.pos) / span;
+    if !(linear.length() <= max_speed) || span <= 0.0 {
+        return Drive::ByVelocity;
+    }
+    let mut turn = goal_rot * last.rot.inverse();
+    if turn.w < 0.0 {
+        turn = -turn;
+    }
+    let (axis, angle) = turn.to_axis_angle();
+    let angular = if angle.is_finite() && axis.is_finite() {
+        axis * (angle / span)
+    } else {
+        Vec3::ZERO
+    };
+    Drive::ToTarget(Velocity { linear, angular }, (goal_pos, goal_rot))
 }
 
 /// A collider's place in the step's canonical order: its [`SpawnOrder`] (every collider
@@ -246,14 +313,20 @@ struct BodyInput<'a> {
     rotation_locked: bool,
 }
 
+/// A body's mass (kg) and principal moments of inertia (kg·m²): its [`Mass`] or its
+/// collider's volume at [`DEFAULT_DENSITY`]; a body without a collider rotates like a
+/// solid ball of 0.5 m radius.
+pub fn mass_properties(shape: Option<&Shape>, mass: Option<&Mass>) -> (f32, Vec3) {
+    let shape = shape.copied().unwrap_or(Shape::Sphere { radius: 0.5 });
+    let m = mass.map_or(shape.volume() * DEFAULT_DENSITY, |m| m.0);
+    (m, shape.principal_inertia(m))
+}
+
 /// Builds a body's solver state. Only its own `ExternalForce` goes into the force model
 /// here; gravity, drag, wind and the global push are the force stage's effects.
 fn gather_body(b: BodyInput, settings: &SolverSettings) -> (BodyState, SolverBody) {
-    // A dynamic body without a collider rotates like a solid ball of 0.5 m radius.
-    let shape = b.shape.unwrap_or(Shape::Sphere { radius: 0.5 });
     let dynamic = b.kind == RigidBody::Dynamic;
-    let m = b.mass.map_or(shape.volume() * DEFAULT_DENSITY, |m| m.0);
-    let inertia = shape.principal_inertia(m);
+    let (m, inertia) = mass_properties(b.shape.as_ref(), b.mass);
     let inv_mass = if dynamic { 1.0 / m } else { 0.0 };
     let inv_inertia = if dynamic && !b.rotation_locked {
         inertia.recip()
@@ -294,6 +367,8 @@ fn gather_body(b: BodyInput, settings: &SolverSettings) -> (BodyState, SolverBod
         round: matches!(b.shape, None | Some(Shape::Sphere { .. })),
         in_contact: false,
         sleep_time: 0.0,
+        driven: false,
+        target: None,
     };
     let solver = SolverBody {
         v,
