@@ -20,6 +20,7 @@ pub mod collider;
 pub mod effects;
 pub mod events;
 pub mod interaction;
+pub mod interpolation;
 pub mod layers;
 pub mod limits;
 pub mod plugin;
@@ -47,6 +48,10 @@ pub mod prelude {
     pub use crate::effects::{Effects, GravityScale, LockRotation, Wind};
     pub use crate::events::{
         CollisionEnd, CollisionEventsEnabled, CollisionStart, Contact, ContactData,
+    };
+    pub use crate::interpolation::{
+        PhysicsExtrapolationPlugin, TransformExtrapolation, TransformInterpolation,
+        TransformInterpolationPlugin,
     };
     pub use crate::layers::{CollisionLayers, LayerMask, PhysicsLayer, Sensor};
     pub use crate::plugin::{PhysicsSystems, TumblePlugin};

@@ -2,7 +2,6 @@
 //! and the demo built from them.
 //!
 //! - [`BodyMeshPlugin`]: meshes for bodies that have none, coloured by mass.
-//! - [`InterpolationPlugin`]: smooth motion at any frame rate.
 //! - [`DragBodiesPlugin`]: click to select, drag to pull, release to throw.
 //! - [`DebugRenderPlugin`]: gizmos for contacts, bounding boxes and velocities.
 //! - [`CapturePlugin`]: frame-counted screenshots for headless runs.
@@ -12,11 +11,9 @@ mod capture;
 mod debug_render;
 pub mod demo;
 mod drag;
-mod interpolate;
 mod meshes;
 
 pub use capture::{CapturePlugin, CaptureRequest};
 pub use debug_render::{DebugRenderPlugin, DebugRenderSettings};
 pub use drag::{DragBodiesPlugin, Dragged, Selected};
-pub use interpolate::InterpolationPlugin;
 pub use meshes::{BodyMeshPlugin, MassColors, mass_color};

@@ -49,9 +49,20 @@ pub fn app_without_gravity() -> App {
 
 /// The one app builder: physics at 60 Hz under `pacing`, sleeping on or off.
 pub fn paced_app(pacing: Pacing, sleeping: bool) -> App {
+    paced_app_with(pacing, sleeping, |_| {})
+}
+
+/// The same, with more plugins added by `setup` before the first update (a plugin's
+/// `finish` runs only then).
+pub fn paced_app_with(pacing: Pacing, sleeping: bool, setup: impl FnOnce(&mut App)) -> App {
     let mut app = App::new();
     app.add_plugins((MinimalPlugins, TransformPlugin, TumblePlugin::default()))
         .insert_resource(strategy(pacing));
+    setup(&mut app);
+    // What `App::run` does before the first frame (plugins' `finish`, e.g. the easing
+    // systems of bevy_transform_interpolation).
+    app.finish();
+    app.cleanup();
     app.world_mut().resource_mut::<Effects>().sleeping = sleeping;
     app.insert_resource(PacingOf(pacing));
     app.update(); // The first update only starts the clock: 0 steps.

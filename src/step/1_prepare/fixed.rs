@@ -54,11 +54,11 @@ pub struct FixedItem {
     filter: FilterItem,
 }
 
-/// Marked entities with a change that may move them, resize them or wake them.
+/// Marked entities with a change that may resize them or wake them (a changed
+/// `Transform` is looked at separately: only a pose that differs is a move).
 type ChangedFilter = (
     With<InFixedSet>,
     Or<(
-        Changed<Transform>,
         Changed<Collider>,
         Changed<RigidBody>,
         Changed<Friction>,
@@ -98,6 +98,7 @@ pub fn sync_fixed_set(
     unmarked: Query<Entity, (With<Collider>, Without<RigidBody>, Unmarked)>,
     fell_asleep: Query<Entity, (With<Sleeping>, Unmarked)>,
     changed: Query<(Entity, Has<Sleeping>), ChangedFilter>,
+    moved: Query<(Entity, Has<Sleeping>, &Transform), (With<InFixedSet>, Changed<Transform>)>,
     sleepers: Query<Entity, (With<Sleeping>, With<InFixedSet>)>,
     mut pending: ResMut<PendingRechecks>,
     settings: Res<SolverSettings>,
@@ -118,6 +119,15 @@ pub fn sync_fixed_set(
         recheck.extend(sleepers.iter().map(|e| (e, true)));
     }
     recheck.extend(changed.iter());
+    // A Transform written with the value it had (an interpolation plugin restoring the
+    // true pose every step, game code setting it every frame) is not a move: it must not
+    // wake a sleeper or re-insert a static collider.
+    recheck.extend(moved.iter().filter_map(|(e, sleeping, tf)| {
+        let same = world.fixed.get(e).is_some_and(|entry| {
+            entry.pos == tf.translation && entry.rot == tf.rotation.normalize()
+        });
+        (!same).then_some((e, sleeping))
+    }));
     recheck.extend(unmarked.iter().map(|e| (e, false)));
     recheck.extend(fell_asleep.iter().map(|e| (e, wake_all)));
     recheck.extend(pending.entities.drain(..).map(|e| (e, false)));

@@ -15,7 +15,9 @@ use bevy::prelude::*;
 use bevy_egui::{EguiPlugin, EguiPrimaryContextPass};
 use bevy_panorbit_camera::PanOrbitCameraPlugin;
 
-use super::{BodyMeshPlugin, DebugRenderPlugin, DragBodiesPlugin, InterpolationPlugin};
+use super::{BodyMeshPlugin, DebugRenderPlugin, DragBodiesPlugin};
+use crate::body::RigidBody;
+use crate::interpolation::{TransformInterpolation, TransformInterpolationPlugin};
 use crate::timings::{STAGES, StepTimings};
 
 pub use scenes::{DemoScenes, SwitchScene};
@@ -37,10 +39,12 @@ impl Plugin for DemoPlugin {
             EguiPlugin::default(),
             PanOrbitCameraPlugin,
             BodyMeshPlugin,
-            InterpolationPlugin,
+            // Smooth motion at any frame rate: the core's interpolation, on every body.
+            TransformInterpolationPlugin::default(),
             DragBodiesPlugin,
             DebugRenderPlugin,
         ))
+        .register_required_components::<RigidBody, TransformInterpolation>()
         .init_asset::<crate::scene::SceneDesc>()
         .init_asset_loader::<crate::scene::SceneLoader>()
         .add_plugins((scenes::plugin, keys::plugin, stats::plugin))
