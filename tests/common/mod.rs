@@ -47,22 +47,28 @@ pub fn app_without_gravity() -> App {
     app
 }
 
-/// The one app builder: physics at 60 Hz under `pacing`, sleeping on or off.
+/// The one app builder: physics at 60 Hz under `pacing`, sleeping on or off. More
+/// plugins may still be added to it (their `finish` never runs: see [`paced_app_with`]).
 pub fn paced_app(pacing: Pacing, sleeping: bool) -> App {
-    paced_app_with(pacing, sleeping, |_| {})
+    build(pacing, sleeping, |_| {}, false)
 }
 
-/// The same, with more plugins added by `setup` before the first update (a plugin's
-/// `finish` runs only then).
+/// The same, with plugins added by `setup` and then finished, as `App::run` does before
+/// the first frame (bevy_transform_interpolation adds its easing systems in `finish`).
+/// No plugin can be added after.
 pub fn paced_app_with(pacing: Pacing, sleeping: bool, setup: impl FnOnce(&mut App)) -> App {
+    build(pacing, sleeping, setup, true)
+}
+
+fn build(pacing: Pacing, sleeping: bool, setup: impl FnOnce(&mut App), finish: bool) -> App {
     let mut app = App::new();
     app.add_plugins((MinimalPlugins, TransformPlugin, TumblePlugin::default()))
         .insert_resource(strategy(pacing));
     setup(&mut app);
-    // What `App::run` does before the first frame (plugins' `finish`, e.g. the easing
-    // systems of bevy_transform_interpolation).
-    app.finish();
-    app.cleanup();
+    if finish {
+        app.finish();
+        app.cleanup();
+    }
     app.world_mut().resource_mut::<Effects>().sleeping = sleeping;
     app.insert_resource(PacingOf(pacing));
     app.update(); // The first update only starts the clock: 0 steps.
