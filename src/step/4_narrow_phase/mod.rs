@@ -184,6 +184,19 @@ pub fn collide_pairs(
         }
         let (da, db) = (is_dynamic(world, a.body), is_dynamic(world, b.body));
         if !da && !db {
+            // A moving kinematic body reaching a sleeper wakes it (a platform carrying a
+            // crate that fell asleep on it); next step they collide.
+            let sleeper = match (a.asleep, b.asleep) {
+                (true, false) if moving(world, b.body) => Some((a, ia, b, ib)),
+                (false, true) if moving(world, a.body) => Some((b, ib, a, ia)),
+                _ => None,
+            };
+            if let Some((s, is, k, ik)) = sleeper {
+                let reach = dt * closing_speed(world, k);
+                if collide(k, ik, s, is, settings.speculative_margin + reach).is_some() {
+                    world.wake.push(s.entity);
+                }
+            }
             continue;
         }
         // Something awake reaches a sleeping body: it wakes next step; this step it
@@ -242,6 +255,14 @@ fn warm_start_from(m: &mut Manifold, cached: &Manifold, reach: f32) {
             p.normal_impulse = c.normal_impulse;
             p.tangent_impulse = c.tangent_impulse;
         }
+    }
+}
+
+/// A kinematic (or dynamic) body with any velocity.
+fn moving(world: &PhysicsWorld, body: u32) -> bool {
+    body != STATIC && {
+        let b = &world.bodies[body as usize];
+        b.v0 != Vec3::ZERO || b.w0 != Vec3::ZERO
     }
 }
 
