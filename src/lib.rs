@@ -17,6 +17,7 @@
 
 pub mod body;
 pub mod collider;
+pub mod diagnostics;
 pub mod effects;
 pub mod events;
 pub mod interaction;
@@ -45,6 +46,7 @@ pub mod prelude {
         PhysicsRejected, Restitution, RigidBody, SleepTimer, Sleeping, Velocity,
     };
     pub use crate::collider::Collider;
+    pub use crate::diagnostics::PhysicsDiagnosticsPlugin;
     pub use crate::effects::{Effects, GravityScale, LockRotation, Wind};
     pub use crate::events::{
         CollisionEnd, CollisionEventsEnabled, CollisionStart, Contact, ContactData,

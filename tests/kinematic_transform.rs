@@ -117,3 +117,63 @@ fn a_teleport_is_not_a_velocity() {
     assert_eq!(pos(&app, k).x, 1000.0);
     assert_eq!(vel(&app, k).linear, Vec3::ZERO);
 }
+
+#[test]
+fn a_platform_that_starts_moving_wakes_the_crate_asleep_on_it() {
+    let mut app = app_with_sleeping();
+    let platform = app
+        .world_mut()
+        .spawn((
+            RigidBody::Kinematic,
+            Collider::cuboid(2.0, 0.1, 2.0),
+            Transform::from_xyz(0.0, 0.1, 0.0),
+        ))
+        .id();
+    let bx = cuboid(&mut app, Vec3::splat(0.25), 1.0, Vec3::Y * 0.45);
+    step(&mut app, 120);
+    assert!(asleep(&app, bx), "the crate sleeps on the still platform");
+    // The platform sets off at 0.5 m/s (an acceleration friction can follow in a step:
+    // μ·g·h = 0.08 m/s... so it slips for a few steps, then rides).
+    app.world_mut()
+        .entity_mut(platform)
+        .insert(Velocity::linear(Vec3::X * 0.5));
+    step(&mut app, 60);
+    assert!(!asleep(&app, bx), "woken by its moving support");
+    assert_near(
+        vel(&app, bx).linear.x,
+        0.5,
+        1e-3,
+        "riding at the platform's speed",
+    );
+}
+
+#[test]
+fn diagnostics_report_the_step() {
+    use bevy::diagnostic::{DiagnosticsPlugin, DiagnosticsStore};
+    let mut app = paced_app_with(Pacing::OneStep, false, |app| {
+        app.add_plugins((DiagnosticsPlugin, PhysicsDiagnosticsPlugin));
+    });
+    ground(&mut app, Vec3::ZERO, Quat::IDENTITY);
+    for i in 0..3 {
+        ball(
+            &mut app,
+            0.3,
+            1.0,
+            Vec3::new(i as f32, 0.3, 0.0),
+            Vec3::ZERO,
+        );
+    }
+    step(&mut app, 10);
+    let store = app.world().resource::<DiagnosticsStore>();
+    let value = |path: &str| {
+        store
+            .get(&bevy::diagnostic::DiagnosticPath::new(path.to_string()))
+            .and_then(|d| d.value())
+            .unwrap_or(f64::NAN)
+    };
+    assert_eq!(value("physics/awake_bodies"), 3.0);
+    assert_eq!(value("physics/fixed_colliders"), 1.0);
+    assert_eq!(value("physics/contacts"), 3.0);
+    assert_eq!(value("physics/substeps"), 4.0);
+    assert!(value("physics/step") > 0.0 && value("physics/solve") >= 0.0);
+}

@@ -144,6 +144,8 @@ fn run_stage(
     settings: &SolverSettings,
     params: &ContactParams,
 ) {
+    // For profilers (trace level: free unless asked for).
+    let _span = trace_span!("tumble::solve", stage = ?stage).entered();
     let h = params.h;
     let bodies = &mut world.solver_bodies;
     let iterations = scratch.iterations;

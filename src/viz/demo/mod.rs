@@ -8,7 +8,6 @@ mod scenes;
 mod stats;
 mod tour;
 
-use bevy::diagnostic::{Diagnostic, DiagnosticPath, Diagnostics, RegisterDiagnostic};
 use bevy::ecs::schedule::SingleThreadedExecutor;
 use bevy::picking::mesh_picking::MeshPickingPlugin;
 use bevy::prelude::*;
@@ -18,7 +17,6 @@ use bevy_panorbit_camera::PanOrbitCameraPlugin;
 use super::{BodyMeshPlugin, DebugRenderPlugin, DragBodiesPlugin};
 use crate::body::RigidBody;
 use crate::interpolation::{TransformInterpolation, TransformInterpolationPlugin};
-use crate::timings::{STAGES, StepTimings};
 
 pub use scenes::{DemoScenes, SwitchScene};
 pub use stats::{EnergyHistory, SceneStats};
@@ -27,10 +25,7 @@ pub use tour::tour_plugin;
 /// Everything the demo needs on top of `DefaultPlugins` and `TumblePlugin`.
 pub struct DemoPlugin;
 
-/// Stage diagnostics, in step order: `physics/prepare`, …, `physics/sleep`.
-pub fn stage_path(stage: usize) -> DiagnosticPath {
-    DiagnosticPath::new(format!("physics/{}", STAGES[stage].replace(' ', "_")))
-}
+pub use crate::diagnostics::stage_path;
 
 impl Plugin for DemoPlugin {
     fn build(&self, app: &mut App) {
@@ -39,6 +34,7 @@ impl Plugin for DemoPlugin {
             EguiPlugin::default(),
             PanOrbitCameraPlugin,
             BodyMeshPlugin,
+            crate::diagnostics::PhysicsDiagnosticsPlugin,
             // Smooth motion at any frame rate: the core's interpolation, on every body.
             TransformInterpolationPlugin::default(),
             DragBodiesPlugin,
@@ -55,11 +51,7 @@ impl Plugin for DemoPlugin {
             s.set_executor(SingleThreadedExecutor::new());
         })
         .add_systems(Startup, setup_view)
-        .add_systems(FixedPostUpdate, record_timings)
         .add_systems(EguiPrimaryContextPass, panel::draw_panel);
-        for stage in 0..STAGES.len() {
-            app.register_diagnostic(Diagnostic::new(stage_path(stage)).with_suffix(" ms"));
-        }
     }
 }
 
@@ -84,10 +76,4 @@ fn setup_view(mut commands: Commands) {
         ..default()
     });
     commands.insert_resource(ClearColor(Color::srgb(0.12, 0.13, 0.16)));
-}
-
-fn record_timings(timings: Res<StepTimings>, mut diagnostics: Diagnostics) {
-    for (stage, ms) in timings.stage_ms.iter().enumerate() {
-        diagnostics.add_measurement(&stage_path(stage), || *ms);
-    }
 }
