@@ -82,6 +82,65 @@ pub struct Friction(pub f32);
 /// Friction when a body has no [`Friction`] component.
 pub const DEFAULT_FRICTION: f32 = 0.5;
 
+/// How two colliders' coefficients combine into the pair's. When the two colliders ask
+/// for different rules, the one later in this list wins (as in PhysX and rapier), so
+/// `Max` on either side gives the larger coefficient.
+#[derive(Reflect, Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum CoefficientCombine {
+    /// (a + b) / 2: avian3d's and rapier's default for both.
+    Average,
+    /// √(a·b): tumble's default for friction (ice, 0, on anything is frictionless).
+    #[default]
+    GeometricMean,
+    Min,
+    /// a·b.
+    Multiply,
+    /// tumble's default for restitution (a bouncy ball bounces on any floor).
+    Max,
+}
+
+impl CoefficientCombine {
+    /// The rule of a pair whose colliders ask for `self` and `other`.
+    pub fn pair(self, other: Self) -> Self {
+        self.max(other)
+    }
+
+    /// Combines two coefficients.
+    pub fn apply(self, a: f32, b: f32) -> f32 {
+        match self {
+            Self::Average => 0.5 * (a + b),
+            Self::GeometricMean => (a * b).max(0.0).sqrt(),
+            Self::Min => a.min(b),
+            Self::Multiply => a * b,
+            Self::Max => a.max(b),
+        }
+    }
+}
+
+/// The rule this collider asks for when its [`Friction`] meets another's. Default
+/// [`CoefficientCombine::GeometricMean`].
+#[derive(Component, Reflect, Clone, Copy, Debug, PartialEq, Eq)]
+#[reflect(Component)]
+pub struct FrictionCombine(pub CoefficientCombine);
+
+/// The rule this collider asks for when its [`Restitution`] meets another's. Default
+/// [`CoefficientCombine::Max`].
+#[derive(Component, Reflect, Clone, Copy, Debug, PartialEq, Eq)]
+#[reflect(Component)]
+pub struct RestitutionCombine(pub CoefficientCombine);
+
+/// Density of a body's collider, kg/m³, for its mass when it has no [`Mass`]
+/// (default [`DEFAULT_DENSITY`], water; avian3d's default is 1 kg/m³, rapier's 1 too).
+#[derive(Component, Reflect, Clone, Copy, Debug, PartialEq)]
+#[reflect(Component)]
+pub struct ColliderDensity(pub f32);
+
+/// Principal moments of inertia, kg·m², in the body's frame, instead of those of its
+/// collider's solid shape (a hollow shell, a weighted wheel).
+#[derive(Component, Reflect, Clone, Copy, Debug, PartialEq)]
+#[reflect(Component)]
+pub struct AngularInertia(pub Vec3);
+
 /// A force (N) and torque (N·m) in the world frame applied at the centre of mass on every
 /// step until changed. Set it back to zero to stop pushing.
 #[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq)]

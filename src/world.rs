@@ -3,7 +3,7 @@
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 
-use crate::body::RigidBody;
+use crate::body::{CoefficientCombine, RigidBody};
 use crate::collider::Shape;
 use crate::events::TouchingPair;
 use crate::layers::CollisionLayers;
@@ -111,11 +111,24 @@ impl BodyState {
 
 /// How a collider takes part in contacts: its [`CollisionLayers`], whether it is a
 /// [`Sensor`](crate::layers::Sensor), whether it asked for collision events.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ContactFilter {
     pub layers: CollisionLayers,
     pub sensor: bool,
     pub events: bool,
+    /// The combine rules this collider asks for: friction, restitution.
+    pub combine: (CoefficientCombine, CoefficientCombine),
+}
+
+impl Default for ContactFilter {
+    fn default() -> Self {
+        Self {
+            layers: CollisionLayers::default(),
+            sensor: false,
+            events: false,
+            combine: (CoefficientCombine::GeometricMean, CoefficientCombine::Max),
+        }
+    }
 }
 
 impl ContactFilter {

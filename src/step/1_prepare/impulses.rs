@@ -5,7 +5,7 @@
 
 use bevy::prelude::*;
 
-use super::mass_properties;
+use super::{MassInput, mass_properties};
 use crate::body::*;
 use crate::collider::Collider;
 use crate::effects::LockRotation;
@@ -20,6 +20,8 @@ type ImpulseItem<'a> = (
     &'a RigidBody,
     &'a Transform,
     Option<&'a Mass>,
+    Option<&'a ColliderDensity>,
+    Option<&'a AngularInertia>,
     Option<&'a Collider>,
     Has<LockRotation>,
 );
@@ -28,7 +30,9 @@ type ImpulseItem<'a> = (
 pub fn apply_impulses(
     mut bodies: Query<ImpulseItem, (Changed<ExternalImpulse>, Without<PhysicsRejected>)>,
 ) {
-    for (entity, mut impulse, mut vel, kind, tf, mass, collider, locked) in &mut bodies {
+    for (entity, mut impulse, mut vel, kind, tf, mass, density, inertia, collider, locked) in
+        &mut bodies
+    {
         if impulse.is_zero() {
             continue;
         }
@@ -38,7 +42,12 @@ pub fn apply_impulses(
         if *kind != RigidBody::Dynamic {
             continue;
         }
-        let (m, inertia) = mass_properties(collider.map(|c| &c.shape), mass);
+        let given = MassInput {
+            mass,
+            density,
+            inertia,
+        };
+        let (m, inertia) = mass_properties(collider.map(|c| &c.shape), &given);
         let dv = j.impulse / m;
         let dw = if locked {
             Vec3::ZERO

@@ -72,6 +72,8 @@ type Edited = (
         Changed<Transform>,
         Changed<Velocity>,
         Changed<Mass>,
+        Changed<ColliderDensity>,
+        Changed<AngularInertia>,
         Changed<Collider>,
         Changed<RigidBody>,
         Changed<ExternalForce>,

@@ -41,6 +41,8 @@ pub struct BodyItem {
     kind: &'static RigidBody,
     velocity: Option<&'static Velocity>,
     mass: Option<&'static Mass>,
+    density: Option<&'static ColliderDensity>,
+    angular_inertia: Option<&'static AngularInertia>,
     restitution: Option<&'static Restitution>,
     friction: Option<&'static Friction>,
     force: Option<&'static ExternalForce>,
@@ -59,15 +61,22 @@ pub struct FilterItem {
     layers: Option<&'static CollisionLayers>,
     sensor: Has<Sensor>,
     events: Has<CollisionEventsEnabled>,
+    friction_combine: Option<&'static FrictionCombine>,
+    restitution_combine: Option<&'static RestitutionCombine>,
 }
 
 impl FilterItemItem<'_, '_> {
     /// The collider's [`ContactFilter`].
     pub fn get(&self) -> ContactFilter {
+        let default = ContactFilter::default();
         ContactFilter {
             layers: self.layers.copied().unwrap_or_default(),
             sensor: self.sensor,
             events: self.events,
+            combine: (
+                self.friction_combine.map_or(default.combine.0, |c| c.0),
+                self.restitution_combine.map_or(default.combine.1, |c| c.0),
+            ),
         }
     }
 }
@@ -167,7 +176,11 @@ pub fn prepare_bodies(
             pos,
             rot,
             vel,
-            mass: item.mass,
+            mass: MassInput {
+                mass: item.mass,
+                density: item.density,
+                inertia: item.angular_inertia,
+            },
             shape,
             force: item.force,
             damping,
@@ -177,7 +190,8 @@ pub fn prepare_bodies(
         let (mut state, solver) = gather_body(input, &settings);
         if kind == RigidBody::Dynamic {
             let mass = solver.inv_mass.recip();
-            if let Err(e) = validate_mass_properties(mass, state.inertia, item.mass.is_some()) {
+            let given = (item.mass.is_some(), item.angular_inertia.is_some());
+            if let Err(e) = validate_mass_properties(mass, state.inertia, given) {
                 reject(&mut commands, entity, e);
                 continue;
             }
@@ -310,7 +324,7 @@ struct BodyInput<'a> {
     pos: Vec3,
     rot: Quat,
     vel: Velocity,
-    mass: Option<&'a Mass>,
+    mass: MassInput<'a>,
     shape: Option<Shape>,
     force: Option<&'a ExternalForce>,
     damping: Vec2,
@@ -318,20 +332,33 @@ struct BodyInput<'a> {
     rotation_locked: bool,
 }
 
-/// A body's mass (kg) and principal moments of inertia (kg·m²): its [`Mass`] or its
-/// collider's volume at [`DEFAULT_DENSITY`]; a body without a collider rotates like a
-/// solid ball of 0.5 m radius.
-pub fn mass_properties(shape: Option<&Shape>, mass: Option<&Mass>) -> (f32, Vec3) {
+/// A body's mass (kg) and principal moments of inertia (kg·m²): its [`Mass`], or its
+/// collider's volume at its [`ColliderDensity`] (default [`DEFAULT_DENSITY`]); its
+/// [`AngularInertia`], or that of the solid shape. A body without a collider rotates like
+/// a solid ball of 0.5 m radius.
+pub fn mass_properties(shape: Option<&Shape>, mass: &MassInput) -> (f32, Vec3) {
     let shape = shape.copied().unwrap_or(Shape::Sphere { radius: 0.5 });
-    let m = mass.map_or(shape.volume() * DEFAULT_DENSITY, |m| m.0);
-    (m, shape.principal_inertia(m))
+    let density = mass.density.map_or(DEFAULT_DENSITY, |d| d.0);
+    let m = mass.mass.map_or(shape.volume() * density, |m| m.0);
+    let inertia = mass
+        .inertia
+        .map_or_else(|| shape.principal_inertia(m), |i| i.0);
+    (m, inertia)
+}
+
+/// The components that set a body's mass properties.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct MassInput<'a> {
+    pub mass: Option<&'a Mass>,
+    pub density: Option<&'a ColliderDensity>,
+    pub inertia: Option<&'a AngularInertia>,
 }
 
 /// Builds a body's solver state. Only its own `ExternalForce` goes into the force model
 /// here; gravity, drag, wind and the global push are the force stage's effects.
 fn gather_body(b: BodyInput, settings: &SolverSettings) -> (BodyState, SolverBody) {
     let dynamic = b.kind == RigidBody::Dynamic;
-    let (m, inertia) = mass_properties(b.shape.as_ref(), b.mass);
+    let (m, inertia) = mass_properties(b.shape.as_ref(), &b.mass);
     let inv_mass = if dynamic { 1.0 / m } else { 0.0 };
     let inv_inertia = if dynamic && !b.rotation_locked {
         inertia.recip()

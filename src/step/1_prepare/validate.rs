@@ -106,10 +106,14 @@ pub(super) fn validate_scalars(
 pub(super) fn validate_mass_properties(
     mass: f32,
     inertia: Vec3,
-    explicit: bool,
+    (explicit, explicit_inertia): (bool, bool),
 ) -> Result<(), (&'static str, String)> {
     let ok = |x: f32| x.is_finite() && x > 0.0 && x.recip().is_finite();
-    let field = if explicit { "Mass" } else { "Collider" };
+    let field = if explicit {
+        "Mass"
+    } else {
+        "Collider or ColliderDensity"
+    };
     if !ok(mass) {
         return Err((
             field,
@@ -117,9 +121,14 @@ pub(super) fn validate_mass_properties(
         ));
     }
     if !(ok(inertia.x) && ok(inertia.y) && ok(inertia.z)) {
-        // With a usable mass, only the shape's size can make the inertia unusable.
+        // With a usable mass, only the shape's size (or a given inertia) can make the
+        // inertia unusable.
         return Err((
-            "Collider",
+            if explicit_inertia {
+                "AngularInertia"
+            } else {
+                "Collider"
+            },
             format!("inertia {inertia} kg·m² is not finite and positive (mass {mass} kg)"),
         ));
     }

@@ -215,8 +215,10 @@ pub fn collide_pairs(
         if let Some(e) = wake {
             world.wake.push(e);
         }
-        m.friction = (a.friction * b.friction).max(0.0).sqrt();
-        m.restitution = a.restitution.max(b.restitution);
+        let (fa, ra) = a.filter.combine;
+        let (fb, rb) = b.filter.combine;
+        m.friction = fa.pair(fb).apply(a.friction, b.friction).max(0.0);
+        m.restitution = ra.pair(rb).apply(a.restitution, b.restitution);
         let (ea, eb) = (
             world.colliders[m.a as usize].entity,
             world.colliders[m.b as usize].entity,
