@@ -66,6 +66,7 @@ impl Plugin for TumblePlugin {
             .init_resource::<prepare::PendingRechecks>()
             .init_resource::<prepare::SpawnCounter>()
             .add_observer(prepare::record_removal)
+            .add_observer(prepare::record_marker)
             .add_observer(prepare::number_collider)
             .add_message::<events::CollisionStart>()
             .add_message::<events::CollisionEnd>();

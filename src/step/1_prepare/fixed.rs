@@ -4,10 +4,10 @@
 //! and are looked at again only when something about them changes:
 //! - a new static collider or a body that fell asleep (no marker yet);
 //! - a marked entity whose `Transform`, `Collider`, `RigidBody`, `Friction`,
-//!   `Restitution`, `Velocity`, `ExternalForce`, `ExternalImpulse`, `CollisionLayers`,
-//!   `Sensor` or
-//!   `CollisionEventsEnabled` changed (for a sleeper that is the user's hand, and it
-//!   wakes);
+//!   `Restitution`, `Velocity`, `ExternalForce`, `ExternalImpulse` or `CollisionLayers`
+//!   changed (for a sleeper that is the user's hand, and it wakes);
+//! - an inserted or removed `Sensor` or `CollisionEventsEnabled` (markers: recorded by
+//!   observers, so the per-step scan does not test them);
 //! - a removed `Sleeping` (woken), `Collider`, `RigidBody` or marker, or a despawn:
 //!   recorded by observers the moment it happens, whatever the frame pacing
 //!   ([`PendingRechecks`]);
@@ -29,8 +29,7 @@ use super::{FilterItem, fixed_entry, order_key, reject, validate_static};
 use crate::body::*;
 use crate::collider::Collider;
 use crate::effects::Effects;
-use crate::events::CollisionEventsEnabled;
-use crate::layers::{CollisionLayers, Sensor};
+use crate::layers::CollisionLayers;
 use crate::settings::{GlobalForce, SolverSettings};
 use crate::world::PhysicsWorld;
 
@@ -54,11 +53,12 @@ pub struct FixedItem {
     filter: FilterItem,
 }
 
-/// Marked entities with a change that may resize them or wake them (a changed
-/// `Transform` is looked at separately: only a pose that differs is a move).
+/// Marked entities with a change that may move them, resize them or wake them (of a
+/// changed `Transform`, only a pose that differs counts: see [`Edits`]).
 type ChangedFilter = (
     With<InFixedSet>,
     Or<(
+        Changed<Transform>,
         Changed<Collider>,
         Changed<RigidBody>,
         Changed<Friction>,
@@ -67,10 +67,39 @@ type ChangedFilter = (
         Changed<ExternalForce>,
         Changed<ExternalImpulse>,
         Changed<CollisionLayers>,
-        Changed<Sensor>,
-        Changed<CollisionEventsEnabled>,
     )>,
 );
+
+/// What changed on an entity the [`ChangedFilter`] let through.
+#[derive(QueryData)]
+pub struct Edits {
+    transform: Ref<'static, Transform>,
+    collider: Option<Ref<'static, Collider>>,
+    kind: Option<Ref<'static, RigidBody>>,
+    friction: Option<Ref<'static, Friction>>,
+    restitution: Option<Ref<'static, Restitution>>,
+    velocity: Option<Ref<'static, Velocity>>,
+    force: Option<Ref<'static, ExternalForce>>,
+    impulse: Option<Ref<'static, ExternalImpulse>>,
+    layers: Option<Ref<'static, CollisionLayers>>,
+}
+
+impl EditsItem<'_, '_> {
+    /// Something besides the Transform changed.
+    fn other_changed(&self) -> bool {
+        fn changed<T: Component>(r: &Option<Ref<T>>) -> bool {
+            r.as_ref().is_some_and(|r| r.is_changed())
+        }
+        changed(&self.collider)
+            || changed(&self.kind)
+            || changed(&self.friction)
+            || changed(&self.restitution)
+            || changed(&self.velocity)
+            || changed(&self.force)
+            || changed(&self.impulse)
+            || changed(&self.layers)
+    }
+}
 
 /// Not yet in the fixed set, and not rejected.
 type Unmarked = (Without<InFixedSet>, Without<PhysicsRejected>);
@@ -97,8 +126,7 @@ pub fn sync_fixed_set(
     global: Res<GlobalForce>,
     unmarked: Query<Entity, (With<Collider>, Without<RigidBody>, Unmarked)>,
     fell_asleep: Query<Entity, (With<Sleeping>, Unmarked)>,
-    changed: Query<(Entity, Has<Sleeping>), ChangedFilter>,
-    moved: Query<(Entity, Has<Sleeping>, &Transform), (With<InFixedSet>, Changed<Transform>)>,
+    changed: Query<(Entity, Has<Sleeping>, Edits), ChangedFilter>,
     sleepers: Query<Entity, (With<Sleeping>, With<InFixedSet>)>,
     mut pending: ResMut<PendingRechecks>,
     settings: Res<SolverSettings>,
@@ -118,15 +146,15 @@ pub fn sync_fixed_set(
     if wake_all {
         recheck.extend(sleepers.iter().map(|e| (e, true)));
     }
-    recheck.extend(changed.iter());
     // A Transform written with the value it had (an interpolation plugin restoring the
     // true pose every step, game code setting it every frame) is not a move: it must not
     // wake a sleeper or re-insert a static collider.
-    recheck.extend(moved.iter().filter_map(|(e, sleeping, tf)| {
-        let same = world.fixed.get(e).is_some_and(|entry| {
-            entry.pos == tf.translation && entry.rot == tf.rotation.normalize()
+    recheck.extend(changed.iter().filter_map(|(e, sleeping, edits)| {
+        let same_pose = world.fixed.get(e).is_some_and(|entry| {
+            entry.pos == edits.transform.translation
+                && entry.rot == edits.transform.rotation.normalize()
         });
-        (!same).then_some((e, sleeping))
+        (!same_pose || edits.other_changed()).then_some((e, sleeping))
     }));
     recheck.extend(unmarked.iter().map(|e| (e, false)));
     recheck.extend(fell_asleep.iter().map(|e| (e, wake_all)));

@@ -49,6 +49,15 @@ pub fn record_removal(
     pending.entities.push(event.event().entity);
 }
 
+/// Observer: a marker the fixed set depends on was inserted (`Sensor`,
+/// `CollisionEventsEnabled`: markers are inserted or removed, never edited in place).
+pub fn record_marker(
+    event: On<Insert, (Sensor, CollisionEventsEnabled)>,
+    mut pending: ResMut<PendingRechecks>,
+) {
+    pending.entities.push(event.event().entity);
+}
+
 /// The next [`SpawnOrder`] to hand out.
 #[derive(Resource, Default, Debug)]
 pub struct SpawnCounter(u64);

@@ -26,7 +26,7 @@ use crate::world::{
 pub use fixed::{InFixedSet, sync_fixed_set};
 pub use impulses::apply_impulses;
 pub use lifecycle::{
-    PendingRechecks, SpawnCounter, number_collider, readmit_rejected, record_removal,
+    PendingRechecks, SpawnCounter, number_collider, readmit_rejected, record_marker, record_removal,
 };
 pub use settings::{guard_fixed_rate, validate_settings};
 pub use validate::validate;
