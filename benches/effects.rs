@@ -164,6 +164,28 @@ fn main() {
     run("385-cube pyramid", || effect_cases(&pyramid, needed));
 
     run("a bouncing ball among 1000 boxes", still_bodies_cases);
+
+    // Game features a scene does not use cost nothing: collision events are opt-in per
+    // collider. The pyramid (about 1,100 touching contacts) with events on every cube
+    // and with none.
+    run("collision events on the 385-cube pyramid", || {
+        let with_events = |w: &mut World| {
+            pyramid.spawn_into(w);
+            let cubes: Vec<Entity> = w
+                .query_filtered::<Entity, With<RigidBody>>()
+                .iter(w)
+                .collect();
+            for e in cubes {
+                w.entity_mut(e).insert(CollisionEventsEnabled);
+            }
+        };
+        vec![
+            Case::new("no events (the default)", needed, |w| {
+                pyramid.spawn_into(w);
+            }),
+            Case::new("events on every cube", needed, with_events),
+        ]
+    });
 }
 
 /// A ball bouncing on the ground, alone and among 1000 boxes that are static, asleep or

@@ -41,13 +41,9 @@ pub struct ConstraintPoint {
     pub tangent_impulse: Vec2,
     /// Largest normal impulse this step; restitution only acts on points that pushed.
     pub max_normal_impulse: f32,
-    /// Impulses over the whole step, N·s (summed only for constraints that `report`).
-    pub total_normal: f32,
-    pub total_tangent: Vec2,
-    /// Normal relative velocity at the start of the step, m/s.
-    pub prepared_velocity: f32,
-    /// Normal relative velocity when the point first pushed, m/s: the approach speed
-    /// restitution reverses (see `ContactConstraint::approach_gain`).
+    /// Normal relative velocity at the start of the step, m/s, and from when the point
+    /// first pushes, its speed then: the approach speed restitution reverses (see
+    /// `ContactConstraint::approach_gain`).
     pub relative_velocity: f32,
 }
 
@@ -322,13 +318,9 @@ pub fn prepare_constraints(
                 normal_impulse: p.normal_impulse,
                 tangent_impulse: Vec2::new(p.tangent_impulse.dot(t1), p.tangent_impulse.dot(t2)),
                 max_normal_impulse: 0.0,
-                total_normal: 0.0,
-                total_tangent: Vec2::ZERO,
-                prepared_velocity: 0.0,
                 relative_velocity: 0.0,
             };
-            cp.prepared_velocity = row_velocity(&sa, &sb, m.normal, &normal_row, spin);
-            cp.relative_velocity = cp.prepared_velocity;
+            cp.relative_velocity = row_velocity(&sa, &sb, m.normal, &normal_row, spin);
         }
         out.push(c);
     }
@@ -360,13 +352,17 @@ pub fn refresh_rows(bodies: &[SolverBody], constraints: &mut [ContactConstraint]
     }
 }
 
-/// Adds each point's accumulated impulses (what this substep applied) to the step's
-/// totals, for constraints that report them. Run once per substep, after relaxing.
-pub fn sum_impulses(constraints: &mut [ContactConstraint]) {
-    for c in constraints.iter_mut().filter(|c| c.report) {
-        for p in c.points[..c.len].iter_mut() {
-            p.total_normal += p.normal_impulse;
-            p.total_tangent += p.tangent_impulse;
+/// Adds each point's accumulated impulses (what one substep applied) to its manifold's
+/// totals for the step, for constraints that report them. Run after every substep but
+/// the last, and once after restitution for the last (whose impulse restitution and the
+/// final stop add to).
+pub fn sum_impulses(constraints: &[ContactConstraint], manifolds: &mut [Manifold]) {
+    for c in constraints.iter().filter(|c| c.report) {
+        let m = &mut manifolds[c.manifold as usize];
+        for (mp, p) in m.points_mut().iter_mut().zip(&c.points) {
+            mp.total_normal_impulse += p.normal_impulse;
+            mp.total_tangent_impulse +=
+                c.tangent1 * p.tangent_impulse.x + c.tangent2 * p.tangent_impulse.y;
         }
     }
 }

@@ -150,8 +150,9 @@ pub fn solve(
                     // reverses, as fast as free motion made it since the step began,
                     // and no faster. Other contacts' impulses (a light body squeezed
                     // between a heavy one and a wall) are not an approach to reverse.
-                    let floor = p.prepared_velocity - c.approach_gain;
-                    p.relative_velocity = vn.clamp(floor, p.prepared_velocity);
+                    // Until now it holds the start-of-step speed.
+                    let prepared = p.relative_velocity;
+                    p.relative_velocity = vn.clamp(prepared - c.approach_gain, prepared);
                 }
                 let dl = new - p.normal_impulse;
                 p.normal_impulse = new;
@@ -217,7 +218,6 @@ pub fn apply_restitution(
             let dl = new - p.normal_impulse;
             p.normal_impulse = new;
             p.max_normal_impulse = p.max_normal_impulse.max(new);
-            p.total_normal += dl;
             apply_normal(&mut a, &mut b, c.normal, &p.normal_row, dl, c.spin);
         }
         store(bodies, c.a, a);
@@ -244,7 +244,6 @@ pub fn stop_approach(bodies: &mut [SolverBody], constraints: &mut [ContactConstr
             }
             let dl = -p.normal_mass * vn;
             p.normal_impulse += dl;
-            p.total_normal += dl;
             p.max_normal_impulse = p.max_normal_impulse.max(p.normal_impulse);
             apply_normal(&mut a, &mut b, c.normal, &p.normal_row, dl, c.spin);
         }

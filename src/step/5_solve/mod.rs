@@ -118,7 +118,7 @@ pub fn solve_contacts(
         run_stage(stage, world, scratch, *integrator, &settings, &params)
     };
     run(SolverStage::PrepareContacts, world, scratch);
-    for _ in 0..n {
+    for k in 0..n {
         for stage in [
             SolverStage::IntegrateVelocities,
             SolverStage::WarmStart,
@@ -128,9 +128,16 @@ pub fn solve_contacts(
         ] {
             run(stage, world, scratch);
         }
+        // A substep's impulses are final once relaxed (the last one's after restitution).
+        if scratch.report && k + 1 < n {
+            sum_impulses(&world.constraints, &mut world.manifolds);
+        }
     }
     if effects.restitution {
         run(SolverStage::Restitution, world, scratch);
+    }
+    if scratch.report {
+        sum_impulses(&world.constraints, &mut world.manifolds);
     }
     run(SolverStage::StoreImpulses, world, scratch);
 }
@@ -195,10 +202,6 @@ fn run_stage(
             for _ in 0..iterations {
                 solve(bodies, &mut world.constraints, h, use_bias);
                 solve(bodies, &mut world.constraints[..fixed], h, use_bias);
-            }
-            // The substep's impulses are final once relaxed.
-            if !use_bias && scratch.report {
-                sum_impulses(&mut world.constraints);
             }
         }
         SolverStage::IntegratePositions => {
@@ -320,8 +323,6 @@ fn store_impulses(world: &mut PhysicsWorld) {
         for (mp, cp) in m.points_mut().iter_mut().zip(&c.points) {
             mp.normal_impulse = cp.normal_impulse;
             mp.tangent_impulse = world_frame(cp.tangent_impulse);
-            mp.total_normal_impulse = cp.total_normal;
-            mp.total_tangent_impulse = world_frame(cp.total_tangent);
             mp.approach_speed = (-cp.relative_velocity).max(0.0);
         }
     }
