@@ -2,7 +2,8 @@
 
 use bevy::prelude::*;
 
-/// The geometry of a body. Sizes are in metres and are not scaled by `Transform::scale`.
+/// The geometry of a body. Sizes are in metres, before the entity's `Transform::scale`
+/// (see [`Shape::scaled`]).
 #[derive(Component, Reflect, Clone, Copy, Debug, PartialEq)]
 #[reflect(Component)]
 #[require(Transform)]
@@ -111,6 +112,35 @@ impl Shape {
             // A plane has no volume; a kinematic plane never needs inertia.
             Shape::Plane { .. } => Vec3::splat(mass),
         }
+    }
+
+    /// The shape under a `Transform::scale`: a box's half extents and a bounded plane's
+    /// rectangle scale per axis (by the magnitude), a sphere by its largest axis (a
+    /// sphere cannot scale non-uniformly: see [`scales_exactly`](Self::scales_exactly)),
+    /// an infinite plane not at all.
+    pub fn scaled(self, scale: Vec3) -> Self {
+        let s = scale.abs();
+        if s == Vec3::ONE {
+            return self;
+        }
+        match self {
+            Shape::Sphere { radius } => Shape::Sphere {
+                radius: radius * s.max_element(),
+            },
+            Shape::Cuboid { half_extents } => Shape::Cuboid {
+                half_extents: half_extents * s,
+            },
+            Shape::Plane { half_extents } => Shape::Plane {
+                half_extents: half_extents.map(|h| h * Vec2::new(s.x, s.z)),
+            },
+        }
+    }
+
+    /// Whether [`scaled`](Self::scaled) is exact for this scale (not for a sphere
+    /// stretched more along one axis than another).
+    pub fn scales_exactly(&self, scale: Vec3) -> bool {
+        let s = scale.abs();
+        !matches!(self, Shape::Sphere { .. }) || (s.x == s.y && s.y == s.z)
     }
 
     /// The shape's smallest dimension, m: a sphere's diameter, a box's thinnest side; a

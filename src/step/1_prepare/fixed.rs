@@ -150,9 +150,11 @@ pub fn sync_fixed_set(
     // true pose every step, game code setting it every frame) is not a move: it must not
     // wake a sleeper or re-insert a static collider.
     recheck.extend(changed.iter().filter_map(|(e, sleeping, edits)| {
+        let tf = &*edits.transform;
         let same_pose = world.fixed.get(e).is_some_and(|entry| {
-            entry.pos == edits.transform.translation
-                && entry.rot == edits.transform.rotation.normalize()
+            let same_shape =
+                (edits.collider.as_ref()).is_none_or(|c| c.shape.scaled(tf.scale) == entry.shape);
+            entry.pos == tf.translation && entry.rot == tf.rotation.normalize() && same_shape
         });
         (!same_pose || edits.other_changed()).then_some((e, sleeping))
     }));
@@ -182,7 +184,9 @@ pub fn sync_fixed_set(
         let woken_in_place = old.is_some_and(|c| {
             c.asleep
                 && !item.rejected
-                && item.collider.is_some_and(|col| col.shape == c.shape)
+                && item
+                    .collider
+                    .is_some_and(|col| col.shape.scaled(item.transform.scale) == c.shape)
                 && c.pos == item.transform.translation
                 && c.rot == item.transform.rotation.normalize()
         });

@@ -47,7 +47,8 @@ pub fn apply_impulses(
             density,
             inertia,
         };
-        let (m, inertia) = mass_properties(collider.map(|c| &c.shape), &given);
+        let shape = collider.map(|c| c.shape.scaled(tf.scale));
+        let (m, inertia) = mass_properties(shape.as_ref(), &given);
         let dv = j.impulse / m;
         let dw = if locked {
             Vec3::ZERO

@@ -139,7 +139,7 @@ pub fn prepare_bodies(
             continue;
         }
         let vel = item.velocity.copied().unwrap_or(Velocity::ZERO);
-        let shape = item.collider.map(|c| c.shape);
+        let shape = item.collider.map(|c| scaled_shape(entity, c, &tf));
         let damping = Vec2::new(
             item.linear_damping.map_or(0.0, |d| d.0),
             item.angular_damping.map_or(0.0, |d| d.0),
@@ -279,8 +279,27 @@ fn validate_static(
     restitution: Option<&Restitution>,
 ) -> Result<(), (&'static str, String)> {
     let kind = RigidBody::Static;
-    validate(tf, &Velocity::ZERO, kind, None, Some(&c.shape))
-        .and_then(|()| validate_scalars(friction, restitution, Vec2::ZERO, None))
+    validate(
+        tf,
+        &Velocity::ZERO,
+        kind,
+        None,
+        Some(&c.shape.scaled(tf.scale)),
+    )
+    .and_then(|()| validate_scalars(friction, restitution, Vec2::ZERO, None))
+}
+
+/// A collider's shape under its entity's `Transform::scale`. What cannot scale exactly
+/// (a sphere stretched unevenly) takes its largest axis, with a warning.
+pub fn scaled_shape(entity: Entity, collider: &Collider, tf: &Transform) -> Shape {
+    if !collider.shape.scales_exactly(tf.scale) {
+        warn_once!(
+            "tumble: a sphere collider cannot scale unevenly (entity {entity}, scale {}); it \
+             takes the largest axis (further cases are not logged)",
+            tf.scale
+        );
+    }
+    collider.shape.scaled(tf.scale)
 }
 
 /// Leaves a body out of the simulation, tagged with [`PhysicsRejected`] and logged once.
@@ -305,7 +324,7 @@ fn fixed_entry(
         key,
         body: STATIC,
         asleep: false,
-        shape: collider.shape,
+        shape: scaled_shape(entity, collider, tf),
         pos: tf.translation,
         rot: tf.rotation.normalize(),
         friction: friction.map_or(DEFAULT_FRICTION, |f| f.0),
