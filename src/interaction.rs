@@ -1,8 +1,6 @@
 //! The interaction logic of the demo that needs no window, so it is tested headless: the
 //! drag spring, the six-direction push keys, adding bodies and switching scenes.
 
-use bevy::input::ButtonInput;
-use bevy::input::keyboard::KeyCode;
 use bevy::prelude::*;
 
 use crate::PhysicsSystems;
@@ -76,17 +74,6 @@ pub fn pull_dragged(
             .entity(e)
             .insert((ExternalForce { force, torque }, SleepTimer(0.0)));
     }
-}
-
-/// The push direction the held keys ask for (A/D: ∓x, Q/E: ∓y, W/S: ∓z).
-pub fn push_direction(keys: &ButtonInput<KeyCode>) -> Vec3 {
-    let axis =
-        |neg: KeyCode, pos: KeyCode| f32::from(keys.pressed(pos)) - f32::from(keys.pressed(neg));
-    Vec3::new(
-        axis(KeyCode::KeyA, KeyCode::KeyD),
-        axis(KeyCode::KeyQ, KeyCode::KeyE),
-        axis(KeyCode::KeyW, KeyCode::KeyS),
-    )
 }
 
 /// A body added by hand: 2 kg, part of the scene (so a reset removes it).

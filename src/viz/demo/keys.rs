@@ -7,7 +7,7 @@ use bevy_egui::input::egui_wants_any_keyboard_input;
 
 use super::scenes::{DemoScenes, SwitchScene};
 use crate::collider::Collider;
-use crate::interaction::{PUSH_FORCE, Selected, added_body, push_direction};
+use crate::interaction::{PUSH_FORCE, Selected, added_body};
 use crate::settings::GlobalForce;
 
 pub fn plugin(app: &mut App) {
@@ -91,4 +91,37 @@ fn cursor_on_ground(
     let ray = camera.viewport_to_world(tf, cursor).ok()?;
     let t = ray.intersect_plane(Vec3::ZERO, InfinitePlane3d::new(Vec3::Y))?;
     Some(ray.get_point(t))
+}
+
+/// The push direction the held keys ask for (A/D: ∓x, Q/E: ∓y, W/S: ∓z).
+pub fn push_direction(keys: &ButtonInput<KeyCode>) -> Vec3 {
+    let axis =
+        |neg: KeyCode, pos: KeyCode| f32::from(keys.pressed(pos)) - f32::from(keys.pressed(neg));
+    Vec3::new(
+        axis(KeyCode::KeyA, KeyCode::KeyD),
+        axis(KeyCode::KeyQ, KeyCode::KeyE),
+        axis(KeyCode::KeyW, KeyCode::KeyS),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn push_keys_give_six_directions() {
+        let cases = [
+            (KeyCode::KeyD, Vec3::X),
+            (KeyCode::KeyA, Vec3::NEG_X),
+            (KeyCode::KeyE, Vec3::Y),
+            (KeyCode::KeyQ, Vec3::NEG_Y),
+            (KeyCode::KeyS, Vec3::Z),
+            (KeyCode::KeyW, Vec3::NEG_Z),
+        ];
+        for (key, dir) in cases {
+            let mut keys = ButtonInput::<KeyCode>::default();
+            keys.press(key);
+            assert_eq!(push_direction(&keys), dir, "{key:?}");
+        }
+    }
 }
