@@ -24,6 +24,7 @@
 use bevy::ecs::query::QueryData;
 use bevy::prelude::*;
 
+use super::hierarchy::{ChainQuery, unsupported, world_transform};
 use super::lifecycle::PendingRechecks;
 use super::{FilterItem, fixed_entry, order_key, reject, validate_static};
 use crate::body::*;
@@ -51,6 +52,7 @@ pub struct FixedItem {
     rejected: Has<PhysicsRejected>,
     order: Option<&'static SpawnOrder>,
     filter: FilterItem,
+    parent: Has<ChildOf>,
 }
 
 /// Marked entities with a change that may move them, resize them or wake them (of a
@@ -131,6 +133,7 @@ pub fn sync_fixed_set(
     mut pending: ResMut<PendingRechecks>,
     settings: Res<SolverSettings>,
     items: Query<FixedItem>,
+    chain: ChainQuery,
     mut scratch: Local<SyncScratch>,
 ) {
     let world = &mut *world;
@@ -170,7 +173,7 @@ pub fn sync_fixed_set(
 
     for &(entity, wake) in recheck.iter() {
         let old = world.fixed.get(entity).copied();
-        let Ok(item) = items.get(entity) else {
+        let Ok(mut item) = items.get(entity) else {
             // Despawned (or lost its Transform): whatever slept on it wakes.
             disturbed.extend(old.map(|c| (c.aabb_min, c.aabb_max)));
             world.fixed.remove(entity);
@@ -179,6 +182,21 @@ pub fn sync_fixed_set(
             }
             continue;
         };
+        // Under a parent: placed by the whole chain, or refused (see `hierarchy`).
+        let placed;
+        if item.parent {
+            let (tf, under_body) = world_transform(entity, &chain);
+            let body = item.kind.is_some_and(|k| *k != RigidBody::Static);
+            let collider = item.collider.is_some();
+            if let Some(e) = unsupported(body, collider, item.transform, &tf, under_body) {
+                disturbed.extend(old.map(|c| (c.aabb_min, c.aabb_max)));
+                world.fixed.remove(entity);
+                reject(&mut commands, entity, e);
+                continue;
+            }
+            placed = tf;
+            item.transform = &placed;
+        }
         // A sleeper woken where it lies, with its collider, needs no help: it moves, and
         // touching wakes its neighbours. Anything that leaves, jumps or changes shape does.
         let woken_in_place = old.is_some_and(|c| {

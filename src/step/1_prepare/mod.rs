@@ -4,6 +4,7 @@
 //! with [`PhysicsRejected`], and reported once in the log by entity and field.
 
 mod fixed;
+mod hierarchy;
 mod impulses;
 mod lifecycle;
 mod settings;
@@ -24,6 +25,7 @@ use crate::world::{
 };
 
 pub use fixed::{InFixedSet, sync_fixed_set};
+use hierarchy::{ChainQuery, unsupported, world_transform};
 pub use impulses::apply_impulses;
 pub use lifecycle::{
     PendingRechecks, SpawnCounter, number_collider, readmit_rejected, record_marker, record_removal,
@@ -53,6 +55,7 @@ pub struct BodyItem {
     lock_rotation: Has<LockRotation>,
     order: Option<&'static SpawnOrder>,
     filter: FilterItem,
+    parent: Has<ChildOf>,
 }
 
 /// What decides whether and how a collider touches others.
@@ -100,6 +103,7 @@ pub fn prepare_bodies(
     effects: Res<Effects>,
     settings: Res<SolverSettings>,
     query: Query<BodyItem, BodyQueryFilter>,
+    chain: ChainQuery,
 ) {
     let world = &mut *world;
     // The fixed step's length, also when a paused app single-steps.
@@ -123,8 +127,18 @@ pub fn prepare_bodies(
     let span = world.dt * (1 + whole) as f32;
     for item in &query {
         let entity = item.entity;
-        let tf = *item.transform;
         let kind = *item.kind;
+        let tf = if item.parent {
+            let (world_tf, under_body) = world_transform(entity, &chain);
+            let (body, collider) = (kind != RigidBody::Static, item.collider.is_some());
+            if let Some(e) = unsupported(body, collider, item.transform, &world_tf, under_body) {
+                reject(&mut commands, entity, e);
+                continue;
+            }
+            world_tf
+        } else {
+            *item.transform
+        };
         if kind == RigidBody::Static {
             commands.entity(entity).insert(InFixedSet);
             if let Some(c) = item.collider {
