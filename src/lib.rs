@@ -5,7 +5,7 @@
 //! [`PhysicsSystems`] stages, in this order (the folder tree of `src/step/` follows it):
 //!
 //! 1. **prepare** — validate bodies and gather them from the ECS into contiguous arrays
-//! 2. **integrate** — advance every body's free motion with the chosen [`Integrator`]
+//! 2. **integrate** — advance every body's free motion with the chosen [`Integrator`](settings::Integrator)
 //! 3. **broad phase** — candidate pairs from swept, fattened bounding boxes
 //! 4. **narrow phase** — contact manifolds, dispatched over shape pairs
 //! 5. **solve** — soft-step contact impulses with substeps, friction and restitution

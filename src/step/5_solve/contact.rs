@@ -34,7 +34,7 @@ pub struct ConstraintPoint {
     pub normal_row: AngularRow,
     pub tangent_rows: [AngularRow; 2],
     pub normal_mass: f32,
-    /// One mass for both tangent rows; see [`isotropic_tangent_mass`].
+    /// One mass for both tangent rows; see `isotropic_tangent_mass`.
     pub tangent_mass: f32,
     pub normal_impulse: f32,
     /// Friction impulse along (tangent1, tangent2).
@@ -114,7 +114,7 @@ pub struct ContactConstraint {
     pub approach_gain: f32,
     pub softness: Softness,
     /// Fastest push-out, m/s, this contact may drive: the setting shared among the
-    /// overlaps of the more crowded of its two bodies ([`push_out_share`]).
+    /// overlaps of the more crowded of its two bodies (`push_out_share`).
     pub max_push: f32,
     pub points: [ConstraintPoint; MAX_POINTS],
     pub len: usize,
