@@ -22,6 +22,10 @@ use crate::world::{ColliderEntry, PhysicsWorld, STATIC};
 /// fraction of the speculative margin (5 mm at the default 2 cm): the sweep's tolerance.
 pub const CONTINUOUS_SLOP: f32 = 0.25;
 
+/// The most of its thinnest side a body may end a step deeper in a fixed collider than
+/// it started: for small bodies this, not [`CONTINUOUS_SLOP`], sets the tolerance.
+pub const SLOP_OF_THICKNESS: f32 = 0.1;
+
 /// Bisection steps on the path: the pose is found to 1/2^10 of the step's motion.
 const BISECTIONS: u32 = 10;
 
@@ -50,6 +54,8 @@ pub fn sweep_against_fixed(
             continue;
         }
         let (dp, dq) = (s.dp, s.dq);
+        // The tolerance scales down for small bodies: a tenth of the thinnest side.
+        let slop = slop.min(SLOP_OF_THICKNESS * c.shape.thickness());
         let at = |t: f32| ColliderEntry {
             pos: b.x0 + dp * t,
             rot: (Quat::IDENTITY.slerp(dq, t) * b.q0).normalize(),

@@ -20,7 +20,7 @@ pub use contact::{
     AngularRow, ConstraintPoint, ContactConstraint, ContactParams, prepare_constraints,
     refresh_rows, sum_impulses,
 };
-pub use continuous::{CONTINUOUS_SLOP, sweep_against_fixed};
+pub use continuous::{CONTINUOUS_SLOP, SLOP_OF_THICKNESS, sweep_against_fixed};
 pub use iterate::{apply_restitution, solve, stop_approach, warm_start};
 pub use softness::Softness;
 pub use stiffness::{Wanted, contact_softness, pair_size, substeps_for, wanted_hertz};
