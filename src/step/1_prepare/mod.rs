@@ -232,6 +232,11 @@ pub fn prepare_bodies(
             });
         }
     }
+    // Read: hand the map back empty, its capacity kept, for writeback to fill (no
+    // allocation per step).
+    let mut last_poses = last_poses;
+    last_poses.clear();
+    world.kinematic_poses = last_poses;
 }
 
 /// How a kinematic body moves this step.
