@@ -153,6 +153,12 @@ impl Shape {
         }
     }
 
+    /// The thinner of two shapes' thicknesses, m: what sets a pair's allowed sag and
+    /// its speculative margin.
+    pub fn pair_thickness(&self, other: &Shape) -> f32 {
+        self.thickness().min(other.thickness())
+    }
+
     /// World-space bounding box at a pose, as (min, max). Infinite planes are unbounded.
     pub fn aabb(&self, pos: Vec3, rot: Quat) -> (Vec3, Vec3) {
         let half = match *self {

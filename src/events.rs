@@ -2,7 +2,8 @@
 //!
 //! Two colliders *touch* when a contact point between them overlaps or pushed this step
 //! (for a [`Sensor`](crate::layers::Sensor): when they overlap), and keep touching while
-//! a point stays within a slop of 5 mm (a quarter of the speculative margin), so a
+//! a point stays within a slop of 5 mm (a quarter of the pair's speculative margin,
+//! less for bodies under 4 cm), so a
 //! landing that rebounds a millimetre is one collision. Events are opt-in per
 //! collider, as in avian3d and bevy_rapier3d: a pair is reported when either collider
 //! has [`CollisionEventsEnabled`], so a scene with thousands of contacts and no one
@@ -235,12 +236,16 @@ pub fn report_collisions(
     now.clear();
     // A pair that touched stays touching while a point is within the slop: a landing
     // that rebounds a millimetre for a step is one collision, not three events.
-    let slop = CONTINUOUS_SLOP * settings.speculative_margin;
+    // The slop is a quarter of the pair's margin: 5 mm, less for bodies under 4 cm.
     let previous = &world.touching;
     let colliders = &world.colliders;
+    let slop = |m: &Manifold| {
+        let (a, b) = (&colliders[m.a as usize], &colliders[m.b as usize]);
+        CONTINUOUS_SLOP * settings.margin_for(a.shape.pair_thickness(&b.shape))
+    };
     let contacts = world.manifolds.iter().filter(|m| {
         PhysicsWorld::is_touching(m)
-            || (m.points().iter().any(|p| p.separation <= slop)
+            || (m.points().iter().any(|p| p.separation <= slop(m))
                 && previous.contains_key(&ordered(
                     colliders[m.a as usize].entity,
                     colliders[m.b as usize].entity,

@@ -187,3 +187,31 @@ fn a_despawned_collider_is_never_named() {
         );
     });
 }
+
+/// The touching slop scales with the pair: a 1 cm marble (restitution 0.6, dropped 1 cm)
+/// bounces 3.6 mm, a third of its size. That is a new collision: the landing, the end
+/// as it leaves, the second landing one flight time 2·e·√(2gh)/g (54 ms) later. With a
+/// fixed 5 mm slop the marble never stopped touching.
+#[test]
+fn a_marble_bouncing_a_third_of_its_size_ends_touching_and_lands_again() {
+    under_every_pacing(&Pacing::GAME, &[false], |app, _, pacing| {
+        let what = format!("{pacing:?}");
+        app.init_resource::<Seen>();
+        app.world_mut()
+            .resource_mut::<SolverSettings>()
+            .restitution_threshold = 0.1;
+        let (r, m, h, e) = (0.005, 0.004, 0.01, 0.6);
+        let floor = ground(app, Vec3::ZERO, Quat::IDENTITY);
+        let b = ball(app, r, m, Vec3::Y * (r + h), Vec3::ZERO);
+        app.world_mut().entity_mut(b).insert(Restitution(e));
+        watch(app, b);
+        step(app, 30);
+        let seen = &app.world().resource::<Seen>().0;
+        let kinds: Vec<bool> = seen.iter().take(3).map(|s| s.1).collect();
+        assert_eq!(kinds, [true, false, true], "{what}: land, leave, land: {seen:?}");
+        assert!(seen.iter().all(|s| s.2 == b && s.3 == floor), "{what}");
+        let flight = 2.0 * e * (2.0 * G * h).sqrt() / G;
+        let steps = (seen[2].0 - seen[0].0) as f32;
+        assert_near(steps * H, flight, H, &format!("{what}: time between landings"));
+    });
+}

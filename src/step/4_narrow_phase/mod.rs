@@ -193,7 +193,8 @@ pub fn collide_pairs(
             };
             if let Some((s, is, k, ik)) = sleeper {
                 let reach = dt * closing_speed(world, k);
-                if collide(k, ik, s, is, settings.speculative_margin + reach).is_some() {
+                let margin = settings.margin_for(k.shape.pair_thickness(&s.shape));
+                if collide(k, ik, s, is, margin + reach).is_some() {
                     world.wake.push(s.entity);
                 }
             }
@@ -209,7 +210,8 @@ pub fn collide_pairs(
             None
         };
         let reach = dt * (closing_speed(world, a) + closing_speed(world, b));
-        let Some(mut m) = collide(a, ia, b, ib, settings.speculative_margin + reach) else {
+        let margin = settings.margin_for(a.shape.pair_thickness(&b.shape));
+        let Some(mut m) = collide(a, ia, b, ib, margin + reach) else {
             continue;
         };
         if let Some(e) = wake {
@@ -224,7 +226,7 @@ pub fn collide_pairs(
             world.colliders[m.b as usize].entity,
         );
         if let Some(cached) = world.impulse_cache.get(&(ea, eb)) {
-            warm_start_from(&mut m, cached, settings.speculative_margin);
+            warm_start_from(&mut m, cached, margin);
         }
         world.manifolds.push(m);
     }

@@ -40,8 +40,7 @@ pub fn sweep_against_fixed(
     if world.manifolds.is_empty() {
         return;
     }
-    let (dt, margin) = (world.dt, settings.speculative_margin);
-    let slop = CONTINUOUS_SLOP * margin;
+    let dt = world.dt;
     for ci in 0..world.colliders.len() {
         let c = world.colliders[ci];
         let fixed_or_asleep = c.body == STATIC || c.asleep;
@@ -50,12 +49,15 @@ pub fn sweep_against_fixed(
         }
         let i = c.body as usize;
         let (b, s) = (&world.bodies[i], &world.solver_bodies[i]);
+        // The body's own margin (smaller for bodies under 4 cm) sets both the trigger
+        // and the tolerance, which for small bodies is a tenth of the thinnest side.
+        let thickness = c.shape.thickness();
+        let margin = settings.margin_for(thickness);
         if !b.in_contact || (s.dp - b.v0 * dt).length() <= margin {
             continue;
         }
         let (dp, dq) = (s.dp, s.dq);
-        // The tolerance scales down for small bodies: a tenth of the thinnest side.
-        let slop = slop.min(SLOP_OF_THICKNESS * c.shape.thickness());
+        let slop = (CONTINUOUS_SLOP * margin).min(SLOP_OF_THICKNESS * thickness);
         let at = |t: f32| ColliderEntry {
             pos: b.x0 + dp * t,
             rot: (Quat::IDENTITY.slerp(dq, t) * b.q0).normalize(),

@@ -31,7 +31,7 @@ pub const STACK_LOAD: f32 = 8.0;
 /// The size that sets a contact's allowed sag: the smaller of the two shapes' smallest
 /// dimension (a sphere's diameter, a box's thinnest side); a plane has none.
 pub fn pair_size(a: &Shape, b: &Shape) -> f32 {
-    a.thickness().min(b.thickness())
+    a.pair_thickness(b)
 }
 
 /// What one contact asks of the solver.
