@@ -48,8 +48,8 @@ fn main() {
     }
     let steps = (minutes * 60.0 * 60.0) as u64;
     let run = |app: &mut App, n: u64| {
-        let target = app.world().resource::<PhysicsWorld>().step_count + n;
-        while app.world().resource::<PhysicsWorld>().step_count < target {
+        let target = app.world().resource::<PhysicsWorld>().step_count() + n;
+        while app.world().resource::<PhysicsWorld>().step_count() < target {
             app.update();
         }
     };

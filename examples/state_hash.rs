@@ -28,7 +28,7 @@ fn main() {
         .insert_resource(TimeUpdateStrategy::FixedTimesteps(1));
     app.update();
     scene.spawn_into(app.world_mut());
-    while app.world().resource::<PhysicsWorld>().step_count < steps {
+    while app.world().resource::<PhysicsWorld>().step_count() < steps {
         app.update();
     }
     println!(

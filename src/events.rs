@@ -25,9 +25,8 @@ use bevy::ecs::entity::Entities;
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 
-use crate::settings::SolverSettings;
-use crate::step::narrow_phase::{MAX_POINTS, Manifold};
-use crate::step::solve::CONTINUOUS_SLOP;
+use crate::settings::{CONTINUOUS_SLOP, SolverSettings};
+use crate::world::{MAX_POINTS, Manifold};
 use crate::world::{PhysicsWorld, STATIC};
 
 /// Opts a collider in to [`CollisionStart`] / [`CollisionEnd`]: as messages for its
@@ -108,54 +107,78 @@ pub struct CollisionEnd {
     pub sensor: bool,
 }
 
-/// One body's side of a contact, for [`PhysicsWorld::contacts_of`].
-#[derive(Clone, Copy, Debug)]
-pub struct Contact<'a> {
-    /// The other body.
+/// One body's side of a touching contact, for [`PhysicsWorld::contacts_of`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Contact {
+    /// The other collider.
     pub other: Entity,
     /// Unit normal pointing away from the body asked about, towards `other`.
     pub normal: Vec3,
-    pub manifold: &'a Manifold,
+    /// Contact points (world, start of the last step); the first `len` are used.
+    pub points: [Vec3; MAX_POINTS],
+    pub len: usize,
+    /// Deepest overlap at the start of the last step, m (0 when it only just touched).
+    pub penetration: f32,
+    /// The normal force between the two at the end of the last step, N: the last
+    /// substep's impulses over its length. A box of mass m resting on the ground reads
+    /// m·|g|.
+    pub normal_force: f32,
+}
+
+impl Contact {
+    /// The contact points.
+    pub fn points(&self) -> &[Vec3] {
+        &self.points[..self.len]
+    }
 }
 
 impl PhysicsWorld {
     /// Whether a manifold's bodies touch (not merely a speculative contact).
-    pub fn is_touching(m: &Manifold) -> bool {
+    pub(crate) fn is_touching(m: &Manifold) -> bool {
         m.points()
             .iter()
             .any(|p| p.separation <= 0.0 || p.normal_impulse > 0.0)
     }
 
     /// The entities of a manifold's two colliders.
-    pub fn manifold_entities(&self, m: &Manifold) -> (Entity, Entity) {
+    pub(crate) fn manifold_entities(&self, m: &Manifold) -> (Entity, Entity) {
         (
             self.colliders[m.a as usize].entity,
             self.colliders[m.b as usize].entity,
         )
     }
 
-    /// The contacts a body has as of the last step (touching ones only).
-    pub fn contacts_of(&self, body: Entity) -> impl Iterator<Item = Contact<'_>> {
+    /// The contacts a collider has as of the last step (touching ones only). Sleeping
+    /// bodies' contacts are not kept: a sleeper has none until it wakes.
+    pub fn contacts_of(&self, collider: Entity) -> impl Iterator<Item = Contact> + '_ {
+        let h = self.last_substep;
         self.manifolds
             .iter()
             .filter(|m| Self::is_touching(m))
             .filter_map(move |m| {
                 let (a, b) = self.manifold_entities(m);
-                if a == body {
-                    Some(Contact {
-                        other: b,
-                        normal: m.normal,
-                        manifold: m,
-                    })
-                } else if b == body {
-                    Some(Contact {
-                        other: a,
-                        normal: -m.normal,
-                        manifold: m,
-                    })
+                let (other, sign) = if a == collider {
+                    (b, 1.0)
+                } else if b == collider {
+                    (a, -1.0)
                 } else {
-                    None
+                    return None;
+                };
+                let mut c = Contact {
+                    other,
+                    normal: m.normal * sign,
+                    points: [Vec3::ZERO; MAX_POINTS],
+                    len: m.len,
+                    penetration: 0.0,
+                    normal_force: 0.0,
+                };
+                for (i, p) in m.points().iter().enumerate() {
+                    c.points[i] = p.point;
+                    c.penetration = c.penetration.max(-p.separation);
+                    c.normal_force += p.normal_impulse;
                 }
+                c.normal_force = if h > 0.0 { c.normal_force / h } else { 0.0 };
+                Some(c)
             })
     }
 }

@@ -1,40 +1,40 @@
 //! # tumble — 3D rigid-body physics for Bevy
 //!
 //! Bodies are ordinary entities with a [`Transform`](bevy::prelude::Transform) plus the
-//! components in [`prelude`]. [`TumblePlugin`] steps them in `FixedUpdate` as a chain of
-//! [`PhysicsSystems`] stages, in this order (the folder tree of `src/step/` follows it):
+//! components in [`prelude`]. [`TumblePlugin`] steps them in `FixedUpdate` as the chain
+//! of [`PhysicsSystems`] sets, in [`PhysicsSystems::ORDER`] (prepare → forces →
+//! integrate → broad phase → narrow phase → solve → writeback → sleep).
 //!
-//! 1. **prepare** — validate bodies and gather them from the ECS into contiguous arrays
-//! 2. **integrate** — advance every body's free motion with the chosen [`Integrator`](settings::Integrator)
-//! 3. **broad phase** — candidate pairs from swept, fattened bounding boxes
-//! 4. **narrow phase** — contact manifolds, dispatched over shape pairs
-//! 5. **solve** — soft-step contact impulses with substeps, friction and restitution
-//! 6. **writeback** — arrays back to `Transform` / `Velocity`, collision messages
-//! 7. **sleep** — still islands fall asleep, touched sleepers wake
-//!
-//! Everything between prepare and writeback works on plain slices in [`PhysicsWorld`]
-//! and is tested without Bevy.
+//! Inside, the tree shows the pipeline: `world` is the data layer (the contiguous arrays
+//! of [`PhysicsWorld`], manifolds, constraints, the fixed set) and imports no stage;
+//! `step/` holds one folder or file per stage, each importing the data layer and never
+//! another stage; `geometry` (shape-pair contacts) and `math` (integrators, soft-step
+//! coefficients) are plain functions over slices, tested without Bevy. Only prepare and
+//! writeback touch the ECS. [`PhysicsWorld`] exposes counts and contacts; its arrays are
+//! the crate's own.
 
 pub mod body;
 pub mod collider;
 pub mod diagnostics;
 pub mod effects;
 pub mod events;
+mod geometry;
 pub mod interaction;
 pub mod interpolation;
 pub mod layers;
 pub mod limits;
+mod math;
 pub mod plugin;
 pub mod scene;
 pub mod settings;
 pub mod state_hash;
-pub mod step;
+pub(crate) mod step;
 #[cfg(feature = "study")]
 pub mod study;
 pub mod timings;
 #[cfg(feature = "viz")]
 pub mod viz;
-pub mod world;
+mod world;
 
 pub use plugin::{PhysicsSystems, TumblePlugin};
 pub use world::PhysicsWorld;

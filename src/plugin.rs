@@ -34,6 +34,36 @@ pub enum PhysicsSystems {
     Sleep,
 }
 
+impl PhysicsSystems {
+    /// Every stage in step order: the one place the order is written. The plugin chains
+    /// the sets in this order, and [`StepTimings`] and the diagnostics name their stages
+    /// from it. (The discriminants follow it too: `ORDER[i] as usize == i`.)
+    pub const ORDER: [PhysicsSystems; 8] = [
+        Self::Prepare,
+        Self::Forces,
+        Self::Integrate,
+        Self::BroadPhase,
+        Self::NarrowPhase,
+        Self::Solve,
+        Self::Writeback,
+        Self::Sleep,
+    ];
+
+    /// The stage's name in timings and diagnostics (`physics/<name>`, spaces as `_`).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Prepare => "prepare",
+            Self::Forces => "forces",
+            Self::Integrate => "integrate",
+            Self::BroadPhase => "broad phase",
+            Self::NarrowPhase => "narrow phase",
+            Self::Solve => "solve",
+            Self::Writeback => "writeback",
+            Self::Sleep => "sleep",
+        }
+    }
+}
+
 /// Adds rigid-body physics. Steps in `FixedUpdate` at `hz` (60 by default); a
 /// `Time<Fixed>` inserted after adding the plugin wins.
 #[derive(Clone, Debug)]
@@ -91,20 +121,9 @@ impl Plugin for TumblePlugin {
             .register_type::<GlobalForce>();
 
         use PhysicsSystems as S;
-        app.configure_sets(
-            FixedUpdate,
-            (
-                S::Prepare,
-                S::Forces,
-                S::Integrate,
-                S::BroadPhase,
-                S::NarrowPhase,
-                S::Solve,
-                S::Writeback,
-                S::Sleep,
-            )
-                .chain(),
-        );
+        for pair in S::ORDER.windows(2) {
+            app.configure_sets(FixedUpdate, pair[1].after(pair[0]));
+        }
         app.add_systems(
             RunFixedMainLoop,
             prepare::guard_fixed_rate.in_set(RunFixedMainLoopSystems::BeforeFixedMainLoop),
@@ -114,7 +133,7 @@ impl Plugin for TumblePlugin {
             FixedUpdate,
             (
                 (
-                    stamp::<0>,
+                    stamp::<{ S::Prepare as usize }>,
                     prepare::validate_settings,
                     prepare::readmit_rejected,
                     prepare::sync_fixed_set,
@@ -124,7 +143,7 @@ impl Plugin for TumblePlugin {
                     .chain()
                     .in_set(S::Prepare),
                 (
-                    stamp::<1>,
+                    stamp::<{ S::Forces as usize }>,
                     forces::apply_gravity.run_if(effect(|e| e.gravity)),
                     forces::apply_global_force.run_if(effect(|e| e.global_force)),
                     forces::apply_damping.run_if(effect(|e| e.damping)),
@@ -132,43 +151,58 @@ impl Plugin for TumblePlugin {
                 )
                     .chain()
                     .in_set(S::Forces),
-                (stamp::<2>, integrate::integrate_free_motion)
+                (
+                    stamp::<{ S::Integrate as usize }>,
+                    integrate::integrate_free_motion,
+                )
                     .chain()
                     .in_set(S::Integrate),
                 (
-                    stamp::<3>,
+                    stamp::<{ S::BroadPhase as usize }>,
                     broad_phase::find_pairs.run_if(collisions.clone()),
                 )
                     .chain()
                     .in_set(S::BroadPhase),
                 (
-                    stamp::<4>,
+                    stamp::<{ S::NarrowPhase as usize }>,
                     narrow_phase::collide_pairs.run_if(collisions.clone()),
                 )
                     .chain()
                     .in_set(S::NarrowPhase),
                 (
-                    stamp::<5>,
+                    stamp::<{ S::Solve as usize }>,
                     solve::solve_contacts.run_if(collisions.clone()),
                     solve::sweep_against_fixed.run_if(collisions),
                 )
                     .chain()
                     .in_set(S::Solve),
                 (
-                    stamp::<6>,
+                    stamp::<{ S::Writeback as usize }>,
                     writeback::writeback_bodies,
                     events::report_collisions,
                 )
                     .chain()
                     .in_set(S::Writeback),
                 (
-                    stamp::<7>,
+                    stamp::<{ S::Sleep as usize }>,
                     sleep::update_sleep.run_if(effect(|e| e.sleeping)),
-                    stamp::<8>,
+                    stamp::<{ S::ORDER.len() }>,
                 )
                     .chain()
                     .in_set(S::Sleep),
             ),
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::PhysicsSystems;
+
+    #[test]
+    fn the_order_is_the_discriminants_order() {
+        for (i, stage) in PhysicsSystems::ORDER.iter().enumerate() {
+            assert_eq!(*stage as usize, i, "{stage:?}");
+        }
     }
 }

@@ -96,6 +96,14 @@ pub struct SolverSettings {
 /// that is less than [`SolverSettings::speculative_margin`].
 pub const MARGIN_OF_THICKNESS: f32 = 0.5;
 
+/// How much deeper than it started a body may end a step in a fixed collider, as a
+/// fraction of the speculative margin (5 mm at the default 2 cm): the sweep's tolerance.
+pub const CONTINUOUS_SLOP: f32 = 0.25;
+
+/// The most of its thinnest side a body may end a step deeper in a fixed collider than
+/// it started: for small bodies this, not [`CONTINUOUS_SLOP`], sets the tolerance.
+pub const SLOP_OF_THICKNESS: f32 = 0.1;
+
 impl SolverSettings {
     /// The speculative margin, m, of a pair whose thinner body is `thickness` thick (a
     /// sphere's diameter, a box's thinnest side): the setting, or half the thickness

@@ -4,17 +4,18 @@
 use bevy::platform::time::Instant;
 use bevy::prelude::*;
 
-/// Stage names, in step order, as they appear in [`StepTimings`].
-pub const STAGES: [&str; 8] = [
-    "prepare",
-    "forces",
-    "integrate",
-    "broad phase",
-    "narrow phase",
-    "solve",
-    "writeback",
-    "sleep",
-];
+use crate::plugin::PhysicsSystems;
+
+/// Stage names, in step order ([`PhysicsSystems::ORDER`]), as in [`StepTimings`].
+pub const STAGES: [&str; PhysicsSystems::ORDER.len()] = {
+    let mut names = [""; PhysicsSystems::ORDER.len()];
+    let mut i = 0;
+    while i < names.len() {
+        names[i] = PhysicsSystems::ORDER[i].name();
+        i += 1;
+    }
+    names
+};
 
 /// Wall time of each stage of the last step, milliseconds.
 #[derive(Resource, Default, Clone, Debug)]

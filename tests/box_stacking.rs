@@ -100,7 +100,7 @@ fn ten_box_stack_stands_for_ten_seconds() {
     let top0 = pos(&app, boxes[9]);
     step(&mut app, 600);
     assert_eq!(
-        app.world().resource::<PhysicsWorld>().substeps,
+        app.world().resource::<PhysicsWorld>().substeps(),
         4,
         "unit cubes ask for no extra substeps"
     );
@@ -261,7 +261,7 @@ fn heavy_box_on_light_box_holds_without_sinking_or_walking() {
     let max_sag = SolverSettings::default().max_sag;
     let needed = (100.0 * G / (max_sag * 1.0)).sqrt() / TAU;
     let n = (4.0 * needed * H).ceil() as u32;
-    assert_eq!(app.world().resource::<PhysicsWorld>().substeps, n);
+    assert_eq!(app.world().resource::<PhysicsWorld>().substeps(), n);
     // Ground under 101 kg: 1.74 mm; the 100 kg box on the 1 kg one: 1.74 mm more.
     // Tolerance: the 1 cm walk allowed below shortens corner arms by up to 1 cm: 1.5 %.
     let s_ground = contact_sag(101.0, None, 1.0, n);

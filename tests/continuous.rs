@@ -53,7 +53,7 @@ fn a_light_box_hit_toward_a_wall_stops_at_it() {
             eprintln!("{pacing:?} {speed} m/s: {d} m");
             // The sweep's tolerance, then the soft contact's give under a 1000:1 squeeze.
             assert!(
-                d <= tumble::step::solve::CONTINUOUS_SLOP * margin + 0.0086,
+                d <= tumble::settings::CONTINUOUS_SLOP * margin + 0.0086,
                 "{pacing:?}, {speed} m/s: {d} m into the wall"
             );
         }
@@ -92,7 +92,7 @@ fn a_small_body_stops_within_a_tenth_of_its_size() {
             })
             .find(|&d| d > -1e-4)
             .expect("reaches the wall");
-        let bound = tumble::step::solve::SLOP_OF_THICKNESS * 2.0 * h;
+        let bound = tumble::settings::SLOP_OF_THICKNESS * 2.0 * h;
         assert!(
             first <= bound + 1e-5,
             "{speed} m/s: {first} m into the wall (bound {bound})"

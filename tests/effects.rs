@@ -96,7 +96,7 @@ fn without_collisions_bodies_pass_through_and_no_collision_stage_runs() {
     // Free fall from 1 m for 1 s (semi-implicit, hs = 1/240).
     assert!((pos(&app, b).y - (1.0 - 0.5 * G * (1.0 + 1.0 / 240.0))).abs() < 1e-4);
     let world = app.world().resource::<PhysicsWorld>();
-    assert!(world.pairs.is_empty() && world.manifolds.is_empty());
+    assert!(world.candidate_pairs() == 0 && world.contact_manifolds() == 0);
 }
 
 #[test]

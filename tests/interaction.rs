@@ -36,7 +36,7 @@ fn switching_scenes_replaces_every_scene_entity() {
     );
     assert_eq!(scene_entities(&mut app).len(), 5 + 1);
     assert_eq!(
-        app.world().resource::<PhysicsWorld>().bodies.len(),
+        app.world().resource::<PhysicsWorld>().awake_bodies(),
         5,
         "the solver sees only the new scene"
     );
@@ -58,7 +58,7 @@ fn added_body_falls_and_removed_body_leaves_the_simulation() {
     );
     app.world_mut().despawn(e);
     step(&mut app, 1);
-    assert!(app.world().resource::<PhysicsWorld>().bodies.is_empty());
+    assert!(app.world().resource::<PhysicsWorld>().awake_bodies() == 0);
 }
 
 #[test]

@@ -105,7 +105,7 @@ fn check_extrapolated(
     world: Res<PhysicsWorld>,
 ) {
     // Before the first step there is nothing to extrapolate from.
-    if world.step_count == 0 {
+    if world.step_count() == 0 {
         return;
     }
     // Zero gravity, constant velocity: the true pose at the frame's time is exact.

@@ -43,7 +43,12 @@ fn a_platform_moved_by_its_transform_carries_a_box_and_stops_when_the_moves_stop
         let t = app.world().resource::<Time<Virtual>>().elapsed_secs();
         // Where the last step left the platform (the Transform may already hold the
         // game's next move): behind the game's ½·A·t² by at most two 30 Hz frames.
-        let at = app.world().resource::<PhysicsWorld>().kinematic_poses[&platform].pos;
+        let at = app
+            .world()
+            .resource::<PhysicsWorld>()
+            .kinematic_pose(platform)
+            .unwrap()
+            .0;
         let frame = 1.0 / 30.0;
         let lag = 0.5 * A * t * t - at.x;
         assert!(

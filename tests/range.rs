@@ -35,7 +35,7 @@ fn a_1000_kg_crate_on_a_1_kg_box_holds_for_10_s() {
             tilt(&app, heavy)
         );
     }
-    let substeps = app.world().resource::<PhysicsWorld>().substeps;
+    let substeps = app.world().resource::<PhysicsWorld>().substeps();
     assert!(substeps > 4, "the load took more substeps: {substeps}");
 }
 

@@ -17,12 +17,12 @@ fn watch(app: &mut App, sensor: Entity) {
         .observe(
             |hit: On<CollisionStart>, w: Res<PhysicsWorld>, mut seen: ResMut<Seen>| {
                 assert!(hit.sensor, "a sensor's events say so");
-                seen.0.push((w.step_count, true, hit.collider2));
+                seen.0.push((w.step_count(), true, hit.collider2));
             },
         )
         .observe(
             |end: On<CollisionEnd>, w: Res<PhysicsWorld>, mut seen: ResMut<Seen>| {
-                seen.0.push((w.step_count, false, end.collider2));
+                seen.0.push((w.step_count(), false, end.collider2));
             },
         );
 }

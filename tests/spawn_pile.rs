@@ -28,12 +28,7 @@ const SHIFTS: [usize; 3] = [0, 7, 100];
 
 /// Deepest overlap among this step's contacts, m (0 when none).
 fn deepest(app: &App) -> f32 {
-    let w = app.world().resource::<PhysicsWorld>();
-    w.manifolds
-        .iter()
-        .flat_map(|m| m.points())
-        .map(|p| -p.separation)
-        .fold(0.0, f32::max)
+    app.world().resource::<PhysicsWorld>().deepest_overlap()
 }
 
 #[test]

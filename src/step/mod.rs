@@ -1,7 +1,8 @@
-//! The physics step, one stage per module, in execution order (the file names carry the
-//! order; sleeping comes last). Each stage is one system in [`PhysicsSystems`](crate::PhysicsSystems); the ECS is
-//! touched only by prepare (1) and writeback (6). Stages 2–5 are plain functions over the
-//! slices in [`PhysicsWorld`](crate::PhysicsWorld).
+//! The physics step, one stage per module (the file names carry the order of
+//! [`PhysicsSystems::ORDER`](crate::PhysicsSystems::ORDER)). The ECS is touched only by
+//! prepare (1) and writeback (6); stages 2–5 work on the slices in
+//! [`PhysicsWorld`](crate::PhysicsWorld). Stages import the data layer (`crate::world`),
+//! `crate::geometry` and `crate::math`, never each other.
 
 #[path = "1_prepare/mod.rs"]
 pub mod prepare;

@@ -273,12 +273,7 @@ fn box_stack(config: Config) -> (Measure, f64) {
     for _ in 0..n {
         app.update();
         let world = app.world().resource::<PhysicsWorld>();
-        let deepest = world
-            .manifolds
-            .iter()
-            .flat_map(|mf| mf.points())
-            .map(|p| -p.separation)
-            .fold(0.0f32, f32::max);
+        let deepest = world.deepest_overlap();
         m.error_max = m.error_max.max(deepest as f64);
     }
     m.error_final = (state(&app, boxes[4]).0 - top0).xz().length() as f64;

@@ -87,7 +87,7 @@ fn strategy(pacing: Pacing) -> TimeUpdateStrategy {
 
 /// Physics steps taken so far.
 pub fn steps_taken(app: &App) -> u64 {
-    app.world().resource::<PhysicsWorld>().step_count
+    app.world().resource::<PhysicsWorld>().step_count()
 }
 
 /// Runs frames until exactly `n` more physics steps have run, whatever the pacing. Under

@@ -1,5 +1,5 @@
 //! Keeping the fixed set in step with the ECS. Static colliders and sleeping bodies are not
-//! gathered every step: they enter the [`FixedSet`](crate::step::broad_phase::FixedSet)
+//! gathered every step: they enter the [`FixedSet`](crate::world::FixedSet)
 //! once, carry the [`InFixedSet`] marker (so the per-step gather skips them by archetype),
 //! and are looked at again only when something about them changes:
 //! - a new static collider or a body that fell asleep (no marker yet);

@@ -5,8 +5,10 @@
 //! in its path. Sweep-and-prune finds the overlaps; the brute-force O(n²) search is kept
 //! as the reference it is tested against.
 
+#[cfg(test)]
 mod brute_force;
-mod fixed_set;
+#[cfg(test)]
+mod parity_tests;
 mod sweep_and_prune;
 
 use bevy::prelude::*;
@@ -15,8 +17,8 @@ use crate::limits::MAX_PAIRS_PER_STEP;
 use crate::settings::SolverSettings;
 use crate::world::{ColliderEntry, PhysicsWorld, STATIC};
 
-pub use brute_force::brute_force_pairs;
-pub use fixed_set::FixedSet;
+#[cfg(test)]
+use brute_force::brute_force_pairs;
 pub use sweep_and_prune::SweepAndPrune;
 
 /// Buffers kept between steps: the sweep's order and, per fixed entry, its index in this

@@ -14,17 +14,9 @@
 
 use bevy::prelude::*;
 
-use crate::settings::SolverSettings;
-use crate::step::narrow_phase::collide;
+use crate::geometry::collide;
+use crate::settings::{CONTINUOUS_SLOP, SLOP_OF_THICKNESS, SolverSettings};
 use crate::world::{ColliderEntry, PhysicsWorld, STATIC};
-
-/// How much deeper than it started a body may end a step in a fixed collider, as a
-/// fraction of the speculative margin (5 mm at the default 2 cm): the sweep's tolerance.
-pub const CONTINUOUS_SLOP: f32 = 0.25;
-
-/// The most of its thinnest side a body may end a step deeper in a fixed collider than
-/// it started: for small bodies this, not [`CONTINUOUS_SLOP`], sets the tolerance.
-pub const SLOP_OF_THICKNESS: f32 = 0.1;
 
 /// Bisection steps on the path: the pose is found to 1/2^10 of the step's motion.
 const BISECTIONS: u32 = 10;

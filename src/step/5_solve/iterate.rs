@@ -5,27 +5,7 @@
 
 use bevy::prelude::*;
 
-use super::contact::{AngularRow, ContactConstraint, body, store};
-use crate::world::SolverBody;
-
-/// Velocity of b relative to a along the row's direction `d`.
-#[inline]
-pub fn row_velocity(
-    a: &SolverBody,
-    b: &SolverBody,
-    d: Vec3,
-    row: &AngularRow,
-    spin: [bool; 2],
-) -> f32 {
-    let mut v = d.dot(b.v - a.v);
-    if spin[0] {
-        v -= a.w.dot(row.ra);
-    }
-    if spin[1] {
-        v += b.w.dot(row.rb);
-    }
-    v
-}
+use crate::world::{AngularRow, ContactConstraint, SolverBody, body, row_velocity, store};
 
 /// Linear impulse `p` on b and −p on a, with the angular parts `ang_a`, `ang_b`
 /// (inverse inertia times r × p, already scaled).

@@ -6,24 +6,21 @@
 mod contact;
 mod continuous;
 mod iterate;
-mod softness;
 mod stiffness;
 
 use bevy::prelude::*;
 
 use crate::effects::Effects;
+use crate::math::{FreeStep, Inertial, free_substep, rotate};
 use crate::settings::{Gravity, Integrator, SolverSettings};
-use crate::step::integrate::{FreeStep, Inertial, free_substep, rotate};
-use crate::world::{PhysicsWorld, STATIC, is_isotropic, world_inv_inertia};
-
-pub use contact::{
-    AngularRow, ConstraintPoint, ContactConstraint, ContactParams, prepare_constraints,
-    refresh_rows, sum_impulses,
+use crate::world::{
+    ContactConstraint, ContactParams, PhysicsWorld, STATIC, is_isotropic, world_inv_inertia,
 };
-pub use continuous::{CONTINUOUS_SLOP, SLOP_OF_THICKNESS, sweep_against_fixed};
+
+pub use contact::{prepare_constraints, refresh_rows, sum_impulses};
+pub use continuous::sweep_against_fixed;
 pub use iterate::{apply_restitution, solve, stop_approach, warm_start};
-pub use softness::Softness;
-pub use stiffness::{Wanted, contact_softness, pair_size, substeps_for, wanted_hertz};
+pub use stiffness::{pair_size, substeps_for, wanted_hertz};
 
 /// The solver's stages in execution order. `PrepareContacts` runs once per step; the
 /// five substep stages run `substeps` times; `Restitution` and `StoreImpulses` once.

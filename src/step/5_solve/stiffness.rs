@@ -19,8 +19,8 @@ use std::f32::consts::TAU;
 
 use crate::collider::Shape;
 
-use super::contact::ContactParams;
-use super::softness::Softness;
+use crate::math::Softness;
+use crate::world::ContactParams;
 
 /// The most load, in multiples of the lighter body, that the sag rule reads from a
 /// contact's impulses (its own mass ratio counts in full). A five-high stack of

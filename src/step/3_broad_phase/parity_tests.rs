@@ -3,11 +3,11 @@
 //! the fixed set, after random inserts, moves and removals, finds exactly what testing
 //! every entry finds.
 
+use super::{SweepAndPrune, brute_force_pairs};
+use crate::collider::Shape;
+use crate::world::{ColliderEntry, FixedSet, STATIC};
 use bevy::prelude::*;
 use proptest::prelude::*;
-use tumble::collider::Shape;
-use tumble::step::broad_phase::{FixedSet, SweepAndPrune, brute_force_pairs};
-use tumble::world::{ColliderEntry, STATIC};
 
 fn scene(seed: u64) -> Vec<ColliderEntry> {
     let mut state = seed | 1;

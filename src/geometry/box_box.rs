@@ -10,37 +10,13 @@
 
 use bevy::prelude::*;
 
-use super::polygon::{Polygon, box_face, reduce};
+use super::box_frame::{BoxFrame, most_anti_parallel_face, push_face_points};
+use super::polygon::box_face;
 use super::{Manifold, Posed};
 
 /// How much better (m) B's face axis or an edge axis must separate to be chosen.
 const FACE_TOLERANCE: f32 = 0.001;
 const EDGE_TOLERANCE: f32 = 0.005;
-
-/// A box's frame: centre, axes (columns), half extents.
-#[derive(Clone, Copy)]
-pub struct BoxFrame {
-    pub pos: Vec3,
-    pub axes: Mat3,
-    pub half: Vec3,
-}
-
-impl BoxFrame {
-    pub fn new(p: &Posed, half: Vec3) -> Self {
-        Self {
-            pos: p.pos,
-            axes: Mat3::from_quat(p.rot),
-            half,
-        }
-    }
-
-    /// Half the box's extent along a unit axis.
-    pub fn radius_along(&self, axis: Vec3) -> f32 {
-        (0..3)
-            .map(|k| self.axes.col(k).dot(axis).abs() * self.half[k])
-            .sum()
-    }
-}
 
 pub fn collide(a: Posed, ha: Vec3, b: Posed, hb: Vec3, margin: f32, out: &mut Manifold) {
     let (ba, bb) = (BoxFrame::new(&a, ha), BoxFrame::new(&b, hb));
@@ -122,41 +98,6 @@ fn face_contact(
     let base = (u32::from(flipped) << 28) | ((ref_face as u32) << 24) | ((inc_face as u32) << 20);
     push_face_points(&poly, n, plane, margin, base, out);
     out.normal = if flipped { -n } else { n };
-}
-
-/// The face of `b` whose outward normal points most against `n`.
-pub fn most_anti_parallel_face(b: &BoxFrame, n: Vec3) -> usize {
-    let dots = [0, 1, 2].map(|k| b.axes.col(k).dot(n));
-    let k = (0..3)
-        .max_by(|&i, &j| dots[i].abs().total_cmp(&dots[j].abs()))
-        .unwrap();
-    // Outward normal sign·axis must point against n.
-    2 * k + usize::from(dots[k] > 0.0)
-}
-
-/// Keeps the polygon's vertices within `margin` of the plane n·x = plane (measured along
-/// n), reduces them to four, and adds them midway between the vertex and the plane.
-pub fn push_face_points(
-    poly: &Polygon,
-    n: Vec3,
-    plane: f32,
-    margin: f32,
-    base_id: u32,
-    out: &mut Manifold,
-) {
-    let mut pts = [(Vec3::ZERO, 0.0, 0); 12];
-    let mut len = 0;
-    for i in 0..poly.len {
-        let s = n.dot(poly.v[i]) - plane;
-        if s <= margin {
-            pts[len] = (poly.v[i] - n * (0.5 * s), s, base_id | poly.id[i]);
-            len += 1;
-        }
-    }
-    let (idx, count) = reduce(&pts[..len], n);
-    for &i in &idx[..count] {
-        out.push(pts[i].0, pts[i].1, pts[i].2);
-    }
 }
 
 /// One point between the closest points of A's edge along axis `i` and B's along `j`.

@@ -27,7 +27,7 @@ pub fn ballistic(integrator: Integrator, v0: Vec3, a: Vec3, h: f32, n: u32) -> (
 mod tests {
     use super::*;
     use crate::body::RigidBody;
-    use crate::step::integrate::{Inertial, free_substep};
+    use crate::math::{Inertial, free_substep};
     use crate::world::ForceModel;
 
     #[test]

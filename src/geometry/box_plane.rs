@@ -5,7 +5,7 @@
 
 use bevy::prelude::*;
 
-use super::box_box::{BoxFrame, most_anti_parallel_face, push_face_points};
+use super::box_frame::{BoxFrame, most_anti_parallel_face, push_face_points};
 use super::polygon::box_face;
 use super::{Manifold, Posed};
 

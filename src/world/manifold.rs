@@ -3,11 +3,11 @@
 use bevy::prelude::*;
 
 /// Most points a manifold keeps (a box face on a box face reduces to four).
-pub const MAX_POINTS: usize = 4;
+pub(crate) const MAX_POINTS: usize = 4;
 
 /// One contact point.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct ContactPoint {
+pub(crate) struct ContactPoint {
     /// World position at the start of the step, midway between the two surfaces.
     pub point: Vec3,
     /// Signed distance along the normal: negative when overlapping, positive for a
@@ -32,7 +32,7 @@ pub struct ContactPoint {
 
 /// The contact between two colliders: one normal, up to [`MAX_POINTS`] points.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct Manifold {
+pub(crate) struct Manifold {
     /// Collider indices into [`PhysicsWorld::colliders`](crate::PhysicsWorld).
     pub a: u32,
     pub b: u32,

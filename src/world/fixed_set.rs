@@ -16,10 +16,10 @@ use bevy::prelude::*;
 use crate::world::{ColliderEntry, STATIC};
 
 /// Entries wider along x than this many median widths go in the always-tested list.
-pub const WIDE_FACTOR: f32 = 8.0;
+pub(crate) const WIDE_FACTOR: f32 = 8.0;
 
 #[derive(Default, Debug, Clone)]
-pub struct FixedSet {
+pub(crate) struct FixedSet {
     entries: Vec<ColliderEntry>,
     /// Where each entity's entry is in `entries`.
     slots: HashMap<Entity, u32>,
@@ -38,10 +38,6 @@ pub struct FixedSet {
 impl FixedSet {
     pub fn len(&self) -> usize {
         self.entries.len()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.entries.is_empty()
     }
 
     pub fn entries(&self) -> &[ColliderEntry] {
@@ -148,6 +144,7 @@ impl FixedSet {
     }
 
     /// The reference for [`overlapping`](Self::overlapping): every entry tested.
+    #[cfg(test)]
     pub fn overlapping_brute_force(&self, lo: Vec3, hi: Vec3, margin: f32) -> Vec<u32> {
         let (lo, hi) = (lo - Vec3::splat(margin), hi + Vec3::splat(margin));
         (0..self.entries.len() as u32)

@@ -1,4 +1,17 @@
-//! [`PhysicsWorld`]: the contiguous arrays the step works on between prepare and writeback.
+//! The data layer: [`PhysicsWorld`], the contiguous arrays the step works on between
+//! prepare and writeback, and the types the stages hand each other — bodies, colliders,
+//! the fixed set, contact manifolds and contact constraints. It imports no stage; every
+//! stage imports it.
+
+mod constraint;
+mod fixed_set;
+mod manifold;
+
+pub(crate) use constraint::{
+    AngularRow, ConstraintPoint, ContactConstraint, ContactParams, body, row_velocity, store,
+};
+pub(crate) use fixed_set::FixedSet;
+pub(crate) use manifold::{MAX_POINTS, Manifold};
 
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
@@ -7,17 +20,14 @@ use crate::body::{CoefficientCombine, RigidBody};
 use crate::collider::Shape;
 use crate::events::TouchingPair;
 use crate::layers::CollisionLayers;
-use crate::step::broad_phase::FixedSet;
-use crate::step::narrow_phase::Manifold;
-use crate::step::solve::ContactConstraint;
 
 /// Body index of a static collider: no solver body, zero velocity, infinite mass.
-pub const STATIC: u32 = u32::MAX;
+pub(crate) const STATIC: u32 = u32::MAX;
 
 /// The small hot state the solver iterates over. Positions are kept as changes since the
 /// start of the step (`dp`, `dq`) so that contact anchors stay precise far from the origin.
 #[derive(Clone, Copy, Debug)]
-pub struct SolverBody {
+pub(crate) struct SolverBody {
     pub v: Vec3,
     pub w: Vec3,
     /// Position change since the start of the step.
@@ -31,7 +41,7 @@ pub struct SolverBody {
 
 /// Accelerations and torques on a body from gravity, user forces and drag.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct ForceModel {
+pub(crate) struct ForceModel {
     /// Constant part of the linear acceleration: gravity + force/mass.
     pub accel: Vec3,
     /// World-frame torque, N·m.
@@ -44,7 +54,7 @@ pub struct ForceModel {
 
 /// The cold per-body data of one step, parallel to [`PhysicsWorld::solver_bodies`].
 #[derive(Clone, Copy, Debug)]
-pub struct BodyState {
+pub(crate) struct BodyState {
     pub entity: Entity,
     pub kind: RigidBody,
     /// Pose and velocity at the start of the step.
@@ -62,7 +72,7 @@ pub struct BodyState {
     /// No angular motion: no angular integration, zero inverse inertia.
     pub rotation_locked: bool,
     /// A sphere (or no collider): its contact geometry does not turn with it, so its spin
-    /// is never limited (see [`MAX_ROTATION_PER_STEP`](crate::step::solve::MAX_ROTATION_PER_STEP)).
+    /// is never limited (see `MAX_ROTATION_PER_STEP` in the solve stage).
     pub round: bool,
     /// The body touches something this step, so the solver re-integrates it with contacts.
     pub in_contact: bool,
@@ -78,7 +88,7 @@ pub struct BodyState {
 /// whether the user's Transform drove it there. Next step, a Transform that differs is
 /// the user's move.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct KinematicPose {
+pub(crate) struct KinematicPose {
     pub pos: Vec3,
     pub rot: Quat,
     pub driven: bool,
@@ -89,12 +99,12 @@ pub struct KinematicPose {
 
 /// Whether principal inverse inertias are the same about every axis (a sphere, a cube,
 /// a body that cannot turn): then the world inertia never changes as the body turns.
-pub fn is_isotropic(inv_principal: Vec3) -> bool {
+pub(crate) fn is_isotropic(inv_principal: Vec3) -> bool {
     inv_principal.x == inv_principal.y && inv_principal.y == inv_principal.z
 }
 
 /// R · diag(inv_principal) · Rᵀ.
-pub fn world_inv_inertia(rot: Quat, inv_principal: Vec3) -> Mat3 {
+pub(crate) fn world_inv_inertia(rot: Quat, inv_principal: Vec3) -> Mat3 {
     // Isotropic (spheres, locked rotation): the same in every frame.
     if is_isotropic(inv_principal) {
         return Mat3::from_diagonal(inv_principal);
@@ -112,7 +122,7 @@ impl BodyState {
 /// How a collider takes part in contacts: its [`CollisionLayers`], whether it is a
 /// [`Sensor`](crate::layers::Sensor), whether it asked for collision events.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ContactFilter {
+pub(crate) struct ContactFilter {
     pub layers: CollisionLayers,
     pub sensor: bool,
     pub events: bool,
@@ -141,7 +151,7 @@ impl ContactFilter {
 
 /// One collider of this step. Dynamic and kinematic colliders point at their body.
 #[derive(Clone, Copy, Debug)]
-pub struct ColliderEntry {
+pub(crate) struct ColliderEntry {
     pub entity: Entity,
     /// The collider's [`SpawnOrder`](crate::body::SpawnOrder): pairs are visited in this
     /// order, whatever the ECS's.
@@ -168,47 +178,100 @@ pub struct ColliderEntry {
 #[derive(Resource, Default)]
 pub struct PhysicsWorld {
     /// Hot solver state, one per dynamic or kinematic body.
-    pub solver_bodies: Vec<SolverBody>,
+    pub(crate) solver_bodies: Vec<SolverBody>,
     /// Cold per-body data, parallel to `solver_bodies`.
-    pub bodies: Vec<BodyState>,
+    pub(crate) bodies: Vec<BodyState>,
     /// This step's colliders: the awake ones, then the fixed ones the broad phase found
     /// near them (copied from `fixed`).
-    pub colliders: Vec<ColliderEntry>,
+    pub(crate) colliders: Vec<ColliderEntry>,
     /// Static colliders and sleeping bodies, kept between steps and updated only when
     /// they change.
-    pub fixed: FixedSet,
+    pub(crate) fixed: FixedSet,
     /// Candidate collider pairs from the broad phase, as indices into `colliders`.
-    pub pairs: Vec<(u32, u32)>,
+    pub(crate) pairs: Vec<(u32, u32)>,
     /// Contact manifolds from the narrow phase.
-    pub manifolds: Vec<Manifold>,
+    pub(crate) manifolds: Vec<Manifold>,
     /// Overlaps with a [`Sensor`](crate::layers::Sensor) this step: manifolds the solver
     /// never sees, only the collision events.
-    pub sensor_overlaps: Vec<Manifold>,
+    pub(crate) sensor_overlaps: Vec<Manifold>,
     /// Per-point contact constraints built by the solver.
-    pub constraints: Vec<ContactConstraint>,
+    pub(crate) constraints: Vec<ContactConstraint>,
     /// Last step's accumulated impulses by entity pair, for warm starting.
-    pub impulse_cache: HashMap<(Entity, Entity), Manifold>,
+    pub(crate) impulse_cache: HashMap<(Entity, Entity), Manifold>,
     /// Sleeping bodies that an awake body touched this step: they wake.
-    pub wake: Vec<Entity>,
+    pub(crate) wake: Vec<Entity>,
     /// Kinematic bodies' poses as written at the end of the last step.
-    pub kinematic_poses: HashMap<Entity, KinematicPose>,
+    pub(crate) kinematic_poses: HashMap<Entity, KinematicPose>,
     /// Pairs (ordered by entity) that touched last step, for the collision messages.
-    pub touching: HashMap<(Entity, Entity), TouchingPair>,
+    pub(crate) touching: HashMap<(Entity, Entity), TouchingPair>,
     /// The fixed step of the current step, seconds.
-    pub dt: f32,
+    pub(crate) dt: f32,
     /// The contact solver's substep last step, s (0 before the first contact), which
     /// the cached warm-start impulses are per.
-    pub last_substep: f32,
+    pub(crate) last_substep: f32,
     /// Substeps the contact solver took last step (the setting, or more for stiff
     /// contacts).
-    pub substeps: u32,
+    pub(crate) substeps: u32,
     /// Steps taken since the plugin started.
-    pub step_count: u64,
+    pub(crate) step_count: u64,
 }
 
+/// What a game, a test or an overlay may read; the arrays themselves are the step's.
 impl PhysicsWorld {
+    /// Fixed steps taken since the plugin started.
+    pub fn step_count(&self) -> u64 {
+        self.step_count
+    }
+
+    /// Substeps the contact solver took in the last step: the setting, or more when
+    /// stiff contacts asked for them (see `SolverSettings::max_sag`).
+    pub fn substeps(&self) -> u32 {
+        self.substeps
+    }
+
+    /// Dynamic and kinematic bodies simulated in the last step (sleepers not counted).
+    pub fn awake_bodies(&self) -> usize {
+        self.bodies.len()
+    }
+
+    /// Static colliders and sleeping bodies: the fixed set, kept between steps.
+    pub fn fixed_colliders(&self) -> usize {
+        self.fixed.len()
+    }
+
+    /// Candidate pairs the broad phase found in the last step.
+    pub fn candidate_pairs(&self) -> usize {
+        self.pairs.len()
+    }
+
+    /// Contact manifolds of the last step, speculative ones (not yet touching) included.
+    pub fn contact_manifolds(&self) -> usize {
+        self.manifolds.len()
+    }
+
+    /// Pairs reported as touching to collision events (colliders with
+    /// `CollisionEventsEnabled` only).
+    pub fn reported_pairs(&self) -> usize {
+        self.touching.len()
+    }
+
+    /// Deepest overlap among the last step's contacts at its start, m (0 when none).
+    pub fn deepest_overlap(&self) -> f32 {
+        self.manifolds
+            .iter()
+            .flat_map(|m| m.points())
+            .map(|p| -p.separation)
+            .fold(0.0, f32::max)
+    }
+
+    /// Where the last step left a kinematic body (position, rotation). Its `Transform`
+    /// may already hold the game's next move, which the next step drives it to.
+    pub fn kinematic_pose(&self, body: Entity) -> Option<(Vec3, Quat)> {
+        self.kinematic_poses.get(&body).map(|k| (k.pos, k.rot))
+    }
+
     /// The current world pose of a body during the step.
-    pub fn body_pose(&self, i: usize) -> (Vec3, Quat) {
+    pub(crate) fn body_pose(&self, i: usize) -> (Vec3, Quat) {
         let (b, s) = (&self.bodies[i], &self.solver_bodies[i]);
         (b.x0 + s.dp, (s.dq * b.q0).normalize())
     }

@@ -1,0 +1,148 @@
+//! Geometry: the contact manifold of two posed shapes, by a dispatch table over shape
+//! pairs (sphere, box, plane), each pair in its own file. Plain functions without Bevy's
+//! ECS; the narrow phase and the continuous sweep call [`collide`].
+
+mod box_box;
+mod box_frame;
+mod box_plane;
+mod polygon;
+mod sphere_box;
+mod sphere_plane;
+mod sphere_sphere;
+
+use bevy::prelude::*;
+
+use crate::collider::Shape;
+use crate::world::{ColliderEntry, Manifold};
+
+/// A shape at a pose.
+#[derive(Clone, Copy, Debug)]
+pub struct Posed<'a> {
+    pub shape: &'a Shape,
+    pub pos: Vec3,
+    pub rot: Quat,
+}
+
+impl<'a> Posed<'a> {
+    pub fn of(c: &'a ColliderEntry) -> Self {
+        Self {
+            shape: &c.shape,
+            pos: c.pos,
+            rot: c.rot,
+        }
+    }
+}
+
+/// Collides A with B (A's kind ≤ B's kind) and fills `out` (normal from A to B, points).
+pub type CollideFn = fn(Posed, Posed, f32, &mut Manifold);
+
+fn sphere_sphere(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
+    let (Shape::Sphere { radius: ra }, Shape::Sphere { radius: rb }) = (a.shape, b.shape) else {
+        return;
+    };
+    sphere_sphere::collide(a, *ra, b, *rb, margin, out);
+}
+
+fn sphere_plane(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
+    let (Shape::Sphere { radius }, Shape::Plane { half_extents }) = (a.shape, b.shape) else {
+        return;
+    };
+    sphere_plane::collide(a, *radius, b, *half_extents, margin, out);
+}
+
+fn sphere_box(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
+    let (Shape::Sphere { radius }, Shape::Cuboid { half_extents }) = (a.shape, b.shape) else {
+        return;
+    };
+    sphere_box::collide(a, *radius, b, *half_extents, margin, out);
+}
+
+fn box_box(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
+    let (Shape::Cuboid { half_extents: ha }, Shape::Cuboid { half_extents: hb }) =
+        (a.shape, b.shape)
+    else {
+        return;
+    };
+    box_box::collide(a, *ha, b, *hb, margin, out);
+}
+
+fn box_plane(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
+    let (Shape::Cuboid { half_extents }, Shape::Plane { half_extents: rect }) = (a.shape, b.shape)
+    else {
+        return;
+    };
+    box_plane::collide(a, *half_extents, b, *rect, margin, out);
+}
+
+/// The dispatch table, indexed by [`ShapeKind`] (A ≤ B). `None`: the pair never collides.
+const DISPATCH: [[Option<CollideFn>; 3]; 3] = [
+    //   Sphere             Cuboid           Plane
+    [Some(sphere_sphere), Some(sphere_box), Some(sphere_plane)], // Sphere
+    [None, Some(box_box), Some(box_plane)],                      // Cuboid
+    [None, None, None],                                          // Plane (static only)
+];
+
+/// Collides two colliders, ordering them for the table. The manifold's normal points from
+/// `a` to `b` as given. Returns `None` when they don't touch within `margin`.
+pub fn collide(
+    a: &ColliderEntry,
+    ia: u32,
+    b: &ColliderEntry,
+    ib: u32,
+    margin: f32,
+) -> Option<Manifold> {
+    let nudged;
+    let b = match coincident_nudge(a, b) {
+        Some(offset) => {
+            nudged = ColliderEntry {
+                pos: b.pos + offset,
+                ..*b
+            };
+            &nudged
+        }
+        None => b,
+    };
+    let swap = a.shape.kind() > b.shape.kind();
+    let (first, second) = if swap { (b, a) } else { (a, b) };
+    let f = DISPATCH[first.shape.kind() as usize][second.shape.kind() as usize]?;
+    let mut m = Manifold {
+        a: ia,
+        b: ib,
+        ..default()
+    };
+    if swap {
+        std::mem::swap(&mut m.a, &mut m.b);
+    }
+    f(Posed::of(first), Posed::of(second), margin, &mut m);
+    if m.len == 0 {
+        return None;
+    }
+    if swap {
+        m.flip();
+    }
+    Some(m)
+}
+
+/// Two colliders whose centres coincide give no direction to push apart: box–box ties on
+/// every axis, two spheres have no line between centres. Every pair of a pile spawned at
+/// one point would then push the same way, and the pile would squeeze out into a long
+/// line whose ends fly off. So a coincident pair is collided as if `b` sat a thousandth
+/// of the smaller shape's size away, in a direction hashed from the two entities: the
+/// pile's pairs push every which way and it spreads as a ball. Returns that offset.
+fn coincident_nudge(a: &ColliderEntry, b: &ColliderEntry) -> Option<Vec3> {
+    let scale = 0.5e-3 * a.shape.thickness().min(b.shape.thickness());
+    if !scale.is_finite() || a.pos.distance_squared(b.pos) > scale * scale {
+        return None;
+    }
+    // Keyed by spawn order, not entity ids: a recycled id must not change the direction.
+    let mut h = a.key ^ b.key.rotate_left(32);
+    let mut next = || {
+        h = h.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = h;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
+    };
+    let dir = Vec3::new(next(), next(), next()).normalize_or(Vec3::Y);
+    Some(dir * scale)
+}

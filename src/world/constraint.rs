@@ -1,0 +1,172 @@
+//! Contact constraints: what the solver builds from a manifold, one soft normal row and a
+//! two-row friction disc per point, with the angular parts prepared once per step.
+
+use bevy::prelude::*;
+
+use super::manifold::MAX_POINTS;
+use super::{STATIC, SolverBody};
+use crate::math::Softness;
+
+/// The solver body every static collider shares: never moves, infinite mass.
+pub(crate) const STATIC_BODY: SolverBody = SolverBody {
+    v: Vec3::ZERO,
+    w: Vec3::ZERO,
+    dp: Vec3::ZERO,
+    dq: Quat::IDENTITY,
+    inv_mass: 0.0,
+    inv_inertia: Mat3::ZERO,
+};
+
+/// One contact point of a [`ContactConstraint`].
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct ConstraintPoint {
+    /// Anchors from each body's centre to the contact point, world frame, start of step.
+    pub ra: Vec3,
+    pub rb: Vec3,
+    /// Separation at the start of the step minus n·(rb − ra), so that the current
+    /// separation is this plus n·(cb − ca) for the moved anchor points ca, cb.
+    pub adjusted_separation: f32,
+    /// The angular parts of the normal row and the two tangent rows.
+    pub normal_row: AngularRow,
+    pub tangent_rows: [AngularRow; 2],
+    pub normal_mass: f32,
+    /// One mass for both tangent rows; see `isotropic_tangent_mass`.
+    pub tangent_mass: f32,
+    pub normal_impulse: f32,
+    /// Friction impulse along (tangent1, tangent2).
+    pub tangent_impulse: Vec2,
+    /// Largest normal impulse this step; restitution only acts on points that pushed.
+    pub max_normal_impulse: f32,
+    /// Normal relative velocity at the start of the step, m/s, and from when the point
+    /// first pushes, its speed then: the approach speed restitution reverses (see
+    /// `ContactConstraint::approach_gain`).
+    pub relative_velocity: f32,
+}
+
+/// The angular parts of one velocity row along a direction d at a contact point:
+/// r × d for each body and their images under the body's inverse inertia (which is fixed
+/// over the step). With them a row's velocity is three dot products and its impulse
+/// three scaled additions, with no cross products or matrix products per iteration.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct AngularRow {
+    /// ra × d, rb × d.
+    pub ra: Vec3,
+    pub rb: Vec3,
+    /// Ia⁻¹ (ra × d), Ib⁻¹ (rb × d).
+    pub ia: Vec3,
+    pub ib: Vec3,
+}
+
+impl AngularRow {
+    pub(crate) fn new(a: &SolverBody, b: &SolverBody, ra: Vec3, rb: Vec3, d: Vec3) -> Self {
+        let (ra, rb) = (ra.cross(d), rb.cross(d));
+        Self {
+            ra,
+            rb,
+            ia: a.inv_inertia * ra,
+            ib: b.inv_inertia * rb,
+        }
+    }
+
+    /// The row's angular share of the inverse effective mass.
+    pub(crate) fn inv_mass(&self, spin: [bool; 2]) -> f32 {
+        let a = if spin[0] { self.ra.dot(self.ia) } else { 0.0 };
+        let b = if spin[1] { self.rb.dot(self.ib) } else { 0.0 };
+        a + b
+    }
+}
+
+/// Velocity of b relative to a along the row's direction `d`.
+#[inline]
+pub(crate) fn row_velocity(
+    a: &SolverBody,
+    b: &SolverBody,
+    d: Vec3,
+    row: &AngularRow,
+    spin: [bool; 2],
+) -> f32 {
+    let mut v = d.dot(b.v - a.v);
+    if spin[0] {
+        v -= a.w.dot(row.ra);
+    }
+    if spin[1] {
+        v += b.w.dot(row.rb);
+    }
+    v
+}
+
+/// The contact of one manifold prepared for the solver.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ContactConstraint {
+    /// Body indices, or [`STATIC`].
+    pub a: u32,
+    pub b: u32,
+    /// The manifold the results go back to.
+    pub manifold: u32,
+    pub normal: Vec3,
+    pub tangent1: Vec3,
+    pub tangent2: Vec3,
+    /// Whether each anchor turns with its body when measuring separation. A sphere's
+    /// contact point stays under its centre as it rolls, so its anchor does not turn.
+    pub turn_a: bool,
+    pub turn_b: bool,
+    /// Whether each body can turn here (a dynamic body with rotation, or a spinning
+    /// kinematic one). A static body or one with `LockRotation` runs no angular terms.
+    pub spin: [bool; 2],
+    /// A body here can turn and its inertia is not the same about every axis, so its
+    /// world inertia changes as it turns: the rows are refreshed every substep
+    /// ([`refresh_rows`]).
+    pub refresh: bool,
+    /// A collider here asked for collision events: sum the step's impulses for them.
+    pub report: bool,
+    pub friction: f32,
+    pub restitution: f32,
+    /// How much faster than at the start of the step a point may be approaching when it
+    /// first pushes, m/s: what gravity adds in a step, |g|·dt. A ball falling onto a
+    /// floor meets it up to a step after the contact was prepared, g·dt faster; a light
+    /// box squeezed into the floor by a heavy ball is driven in by the solver, and that
+    /// is no approach to bounce back from (it came back at 458 m/s).
+    pub approach_gain: f32,
+    pub softness: Softness,
+    /// Fastest push-out, m/s, this contact may drive: the setting shared among the
+    /// overlaps of the more crowded of its two bodies (`push_out_share`).
+    pub max_push: f32,
+    pub points: [ConstraintPoint; MAX_POINTS],
+    pub len: usize,
+}
+
+/// The knobs of the solver's constraint preparation: stiffness, substep, and whether friction runs.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ContactParams {
+    /// With friction off every constraint gets μ = 0 and its friction rows are skipped.
+    pub friction: bool,
+    pub hertz: f32,
+    pub max_hertz: f32,
+    /// |gravity|, to read a contact's load from its impulses.
+    pub gravity: f32,
+    pub damping_ratio: f32,
+    /// Substep, s.
+    pub h: f32,
+    /// Step, s.
+    pub dt: f32,
+    /// Fastest push-out of one body, m/s (`SolverSettings::max_push_out`).
+    pub max_push_out: f32,
+    /// Allowed resting sag per contact, as a fraction of the smaller body's size.
+    pub max_sag: f32,
+}
+
+/// A constraint's body `i`: the solver body, or the shared static one.
+pub(crate) fn body(bodies: &[SolverBody], i: u32) -> SolverBody {
+    if i == STATIC {
+        STATIC_BODY
+    } else {
+        bodies[i as usize]
+    }
+}
+
+/// Stores a constraint's body back (nothing for the static one).
+pub(crate) fn store(bodies: &mut [SolverBody], i: u32, b: SolverBody) {
+    if i != STATIC {
+        bodies[i as usize] = b;
+    }
+}
