@@ -36,16 +36,20 @@ pub enum RigidBody {
 #[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq)]
 #[reflect(Component)]
 pub struct Velocity {
+    /// Velocity of the centre of mass, m/s.
     pub linear: Vec3,
+    /// Angular velocity, rad/s (axis × rate).
     pub angular: Vec3,
 }
 
 impl Velocity {
+    /// At rest.
     pub const ZERO: Self = Self {
         linear: Vec3::ZERO,
         angular: Vec3::ZERO,
     };
 
+    /// Moving at `linear` m/s without turning.
     pub fn linear(linear: Vec3) -> Self {
         Self {
             linear,
@@ -92,6 +96,7 @@ pub enum CoefficientCombine {
     /// √(a·b): tumble's default for friction (ice, 0, on anything is frictionless).
     #[default]
     GeometricMean,
+    /// min(a, b).
     Min,
     /// a·b.
     Multiply,
@@ -141,12 +146,32 @@ pub struct ColliderDensity(pub f32);
 #[reflect(Component)]
 pub struct AngularInertia(pub Vec3);
 
+/// Where a dynamic body's centre of mass sits in its own frame, m (default: the origin,
+/// the collider's centre): a car's low centre, a self-righting toy. The body turns about
+/// it, gravity pulls at it, and its [`Velocity`] is that of this point. The mass and the
+/// inertia (about this point) stay those of the shape or of [`Mass`] and
+/// [`AngularInertia`]; the offset moves no mass (as avian3d's `CenterOfMass`).
+/// Kinematic and static bodies ignore it.
+#[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq)]
+#[reflect(Component)]
+pub struct CenterOfMass(pub Vec3);
+
+impl CenterOfMass {
+    /// The centre of mass in the world for a body at `tf`, m: for
+    /// [`ExternalForce::at_point`] and [`ExternalImpulse::at_point`].
+    pub fn world(&self, tf: &Transform) -> Vec3 {
+        tf.translation + tf.rotation * self.0
+    }
+}
+
 /// A force (N) and torque (N·m) in the world frame applied at the centre of mass on every
 /// step until changed. Set it back to zero to stop pushing.
 #[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq)]
 #[reflect(Component)]
 pub struct ExternalForce {
+    /// Force at the centre of mass, N, world frame.
     pub force: Vec3,
+    /// Torque, N·m, world frame.
     pub torque: Vec3,
 }
 
@@ -188,7 +213,9 @@ impl ExternalForce {
 #[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq)]
 #[reflect(Component)]
 pub struct ExternalImpulse {
+    /// Impulse at the centre of mass, N·s, world frame.
     pub impulse: Vec3,
+    /// Angular impulse, N·m·s, world frame.
     pub torque_impulse: Vec3,
 }
 
@@ -248,6 +275,7 @@ pub struct AngularDamping(pub f32);
 pub struct PhysicsRejected {
     /// The offending field, e.g. `"Transform.translation"` or `"Mass"`.
     pub field: &'static str,
+    /// What was wrong with it, with the value.
     pub reason: String,
 }
 

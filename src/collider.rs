@@ -8,22 +8,27 @@ use bevy::prelude::*;
 #[reflect(Component)]
 #[require(Transform)]
 pub struct Collider {
+    /// The shape, in the entity's local frame, centred on its origin.
     pub shape: Shape,
 }
 
 /// The shapes tumble collides. The narrow phase dispatches over pairs of these.
 #[derive(Reflect, Clone, Copy, Debug, PartialEq)]
 pub enum Shape {
+    /// A ball.
     Sphere {
+        /// Radius, m.
         radius: f32,
     },
     /// A box given by its half extents.
     Cuboid {
+        /// Half the box's size along local x, y, z, m.
         half_extents: Vec3,
     },
     /// A static plane through the origin of its entity with normal local +Y. `half_extents`
     /// bounds it to a rectangle in local X/Z; `None` makes it infinite.
     Plane {
+        /// Half the rectangle's size along local x and z, m; `None`: infinite.
         half_extents: Option<Vec2>,
     },
 }
@@ -31,12 +36,16 @@ pub enum Shape {
 /// Index of a shape kind in the narrow phase's dispatch table.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum ShapeKind {
+    /// [`Shape::Sphere`].
     Sphere = 0,
+    /// [`Shape::Cuboid`].
     Cuboid = 1,
+    /// [`Shape::Plane`].
     Plane = 2,
 }
 
 impl Collider {
+    /// A ball of `radius` m.
     pub fn sphere(radius: f32) -> Self {
         Self {
             shape: Shape::Sphere { radius },
@@ -67,6 +76,7 @@ impl Collider {
 }
 
 impl Shape {
+    /// Which kind of shape this is (its row in the narrow phase's table).
     pub fn kind(&self) -> ShapeKind {
         match self {
             Shape::Sphere { .. } => ShapeKind::Sphere,

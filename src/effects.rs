@@ -96,9 +96,14 @@ pub fn effect(f: fn(&Effects) -> bool) -> impl Fn(Res<Effects>) -> bool + Clone 
 #[reflect(Resource)]
 #[serde(default, deny_unknown_fields)]
 pub struct Wind {
+    /// The wind's velocity, m/s (world). Default (4, 0, 0).
     pub velocity: Vec3,
+    /// Drag coefficient towards the wind's velocity, 1/s. Default 0.2.
     pub drag: f32,
+    /// How far the wind speed swings, as a fraction of `velocity`, 0..=10. Default 0
+    /// (steady).
     pub gust: f32,
+    /// Frequency of the gusts, Hz. Default 0.5.
     pub gust_hz: f32,
 }
 

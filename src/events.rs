@@ -42,6 +42,7 @@ pub struct ContactData {
     pub normal: Vec3,
     /// Contact points (world, start of the step); the first `len` are used.
     pub points: [Vec3; MAX_POINTS],
+    /// How many of `points` are used, at most 4.
     pub len: usize,
     /// Deepest overlap at the start of the step, m (0 when it only just touched).
     pub penetration: f32,
@@ -84,14 +85,18 @@ impl ContactData {
 /// is then `collider1`.
 #[derive(Message, EntityEvent, Clone, Copy, Debug, PartialEq)]
 pub struct CollisionStart {
+    /// The lower entity of the pair; in an entity event, the collider it is triggered on.
     #[event_target]
     pub collider1: Entity,
+    /// The other collider.
     pub collider2: Entity,
     /// The colliders' bodies: the collider itself, or `None` for a static collider.
     pub body1: Option<Entity>,
+    /// `collider2`'s body: the collider itself, or `None` for a static collider.
     pub body2: Option<Entity>,
     /// One of them is a sensor: an overlap, not a contact.
     pub sensor: bool,
+    /// What the contact was like in the step it started.
     pub contact: ContactData,
 }
 
@@ -99,11 +104,16 @@ pub struct CollisionStart {
 /// stopped matching). Sent like [`CollisionStart`]; never for a despawned collider.
 #[derive(Message, EntityEvent, Clone, Copy, Debug, PartialEq)]
 pub struct CollisionEnd {
+    /// The lower entity of the pair; in an entity event, the collider it is triggered on.
     #[event_target]
     pub collider1: Entity,
+    /// The other collider.
     pub collider2: Entity,
+    /// `collider1`'s body: the collider itself, or `None` for a static collider.
     pub body1: Option<Entity>,
+    /// `collider2`'s body: the collider itself, or `None` for a static collider.
     pub body2: Option<Entity>,
+    /// One of them is a sensor: an overlap ended, not a contact.
     pub sensor: bool,
 }
 
@@ -116,6 +126,7 @@ pub struct Contact {
     pub normal: Vec3,
     /// Contact points (world, start of the last step); the first `len` are used.
     pub points: [Vec3; MAX_POINTS],
+    /// How many of `points` are used, at most 4.
     pub len: usize,
     /// Deepest overlap at the start of the last step, m (0 when it only just touched).
     pub penetration: f32,
@@ -187,9 +198,13 @@ impl PhysicsWorld {
 /// wants entity events and has a body, and whether a sensor is involved.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct TouchingPair {
+    /// The two colliders, lower entity first.
     pub colliders: (Entity, Entity),
+    /// Whether each has [`CollisionEventsEnabled`].
     pub events: (bool, bool),
+    /// Whether each is a body (not a static collider).
     pub bodies: (bool, bool),
+    /// One of them is a sensor.
     pub sensor: bool,
 }
 

@@ -16,8 +16,11 @@ pub struct Selected;
 /// and the drag plane's normal (towards the camera).
 #[derive(Component, Clone, Copy, Debug)]
 pub struct Dragged {
+    /// The grabbed point in the body's frame, m.
     pub local_anchor: Vec3,
+    /// The point to pull it to, m (world).
     pub target: Vec3,
+    /// Unit normal of the plane the target moves in, towards the camera (world).
     pub plane_normal: Vec3,
 }
 

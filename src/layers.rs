@@ -135,7 +135,9 @@ macro_rules! physics_layers {
 #[derive(Component, Reflect, Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[reflect(Component)]
 pub struct CollisionLayers {
+    /// The layers the collider is a member of. Default layer 0.
     pub memberships: LayerMask,
+    /// The layers whose members the collider touches. Default every layer.
     pub filters: LayerMask,
 }
 

@@ -46,7 +46,9 @@ pub const MAX_MANIFOLDS_PER_STEP: usize = 1 << 17;
 /// A refused value: which field and why.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Invalid {
+    /// The refused field's name (`0` for a one-field tuple struct's value).
     pub field: &'static str,
+    /// The value and the rule it breaks, e.g. `= NaN: must be finite, > 0 and ≤ 1`.
     pub reason: String,
 }
 

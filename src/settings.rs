@@ -50,6 +50,7 @@ pub enum Integrator {
 }
 
 impl Integrator {
+    /// Every integrator, in declaration order.
     pub const ALL: [Integrator; 3] = [
         Integrator::ExplicitEuler,
         Integrator::SemiImplicitEuler,
@@ -139,8 +140,11 @@ impl Default for SolverSettings {
 #[derive(Resource, Reflect, Clone, Copy, Debug, PartialEq)]
 #[reflect(Resource)]
 pub struct SleepSettings {
+    /// Speed below which a body counts as still, m/s. Default 0.05.
     pub linear_threshold: f32,
+    /// Angular speed below which a body counts as still, rad/s. Default 0.05.
     pub angular_threshold: f32,
+    /// How long every body of an island must stay still before it sleeps, s. Default 0.5.
     pub time_to_sleep: f32,
 }
 

@@ -20,6 +20,7 @@ pub const STAGES: [&str; PhysicsSystems::ORDER.len()] = {
 /// Wall time of each stage of the last step, milliseconds.
 #[derive(Resource, Default, Clone, Debug)]
 pub struct StepTimings {
+    /// Wall time of each stage, ms, in the order of [`STAGES`].
     pub stage_ms: [f64; STAGES.len()],
     started: Option<Instant>,
     stage: usize,

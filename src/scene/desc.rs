@@ -1,5 +1,5 @@
-//! The scene file format. Every field but the bodies has a default, so a scene file says
-//! only what it needs.
+//! The scene file format. Every field but the scene's name has a default, so a scene file
+//! says only what it needs.
 
 use bevy::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -16,16 +16,21 @@ use super::check;
 #[cfg_attr(feature = "viz", derive(bevy::asset::Asset))]
 #[serde(deny_unknown_fields)]
 pub struct SceneDesc {
+    /// The scene's name, used in log messages.
     pub name: String,
+    /// What the scene shows, free text. Default empty.
     #[serde(default)]
     pub description: String,
+    /// Simulation settings; left out: [`SceneSettings::default`].
     #[serde(default)]
     pub settings: SceneSettings,
     /// Where the demo's camera looks from.
     #[serde(default)]
     pub camera: CameraDesc,
+    /// Static planes (ground, walls, ramps). Default none.
     #[serde(default)]
     pub planes: Vec<PlaneDesc>,
+    /// The bodies, single or in generated groups. Default none.
     #[serde(default)]
     pub bodies: Vec<BodyGroup>,
 }
@@ -34,8 +39,11 @@ pub struct SceneDesc {
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
 #[serde(default, deny_unknown_fields)]
 pub struct SceneSettings {
+    /// Gravitational acceleration, m/s², each component within ±1e4
+    /// ([`MAX_ACCELERATION`](crate::limits::MAX_ACCELERATION)). Default (0, −9.81, 0).
     #[serde(deserialize_with = "check::gravity")]
     pub gravity: Vec3,
+    /// The time integrator. Default semi-implicit Euler.
     pub integrator: Integrator,
     /// Fixed steps per second, 1..=10000.
     #[serde(deserialize_with = "check::hz")]
@@ -67,13 +75,18 @@ impl Default for SceneSettings {
     }
 }
 
+/// Where the demo's camera starts: orbiting `focus` at `distance`, turned by `yaw` and
+/// `pitch`.
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
 #[serde(default, deny_unknown_fields)]
 pub struct CameraDesc {
+    /// The point the camera looks at and orbits, m (world). Default (0, 1, 0).
     pub focus: Vec3,
+    /// Distance from `focus`, m. Default 16.
     pub distance: f32,
     /// Degrees.
     pub yaw: f32,
+    /// Angle of the camera above `focus`, from the horizontal, degrees. Default 25.
     pub pitch: f32,
 }
 
@@ -92,8 +105,10 @@ impl Default for CameraDesc {
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
 #[serde(default, deny_unknown_fields)]
 pub struct PlaneDesc {
+    /// A point on the plane, the centre of a rectangle, m (world). Default the origin.
     #[serde(deserialize_with = "check::position")]
     pub position: Vec3,
+    /// The direction the plane faces; any finite non-zero length. Default +Y.
     #[serde(deserialize_with = "check::normal")]
     pub normal: Vec3,
     /// Turn about the normal, degrees (orients a rectangle).
@@ -101,8 +116,10 @@ pub struct PlaneDesc {
     /// Half extents of the rectangle along the plane's local x and z; `None`: infinite.
     #[serde(deserialize_with = "check::opt_rect")]
     pub half_extents: Option<Vec2>,
+    /// Friction coefficient, 0..=1e4. Default 0.5.
     #[serde(deserialize_with = "check::friction")]
     pub friction: f32,
+    /// Coefficient of restitution, 0 (no bounce) to 1. Default 0.
     #[serde(deserialize_with = "check::restitution")]
     pub restitution: f32,
 }
@@ -128,8 +145,10 @@ impl PlaneDesc {
     }
 }
 
+/// A body's shape.
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
 pub enum ShapeDesc {
+    /// A sphere of this radius, m.
     Sphere(#[serde(deserialize_with = "check::size")] f32),
     /// Half extents.
     Cuboid(#[serde(deserialize_with = "check::sizes")] Vec3),
@@ -139,24 +158,33 @@ pub enum ShapeDesc {
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
 #[serde(default, deny_unknown_fields)]
 pub struct BodyDesc {
+    /// The collider's shape. Default a 1 m cube (half extents 0.5 m).
     pub shape: ShapeDesc,
+    /// Dynamic, static or kinematic. Default dynamic.
     pub kind: RigidBody,
+    /// Position of the body's centre, m (world). Default the origin.
     #[serde(deserialize_with = "check::position")]
     pub position: Vec3,
     /// Euler angles XYZ, degrees.
     #[serde(deserialize_with = "check::angles")]
     pub rotation_deg: Vec3,
+    /// Initial linear velocity, m/s (world). Default zero.
     #[serde(deserialize_with = "check::velocity")]
     pub velocity: Vec3,
+    /// Initial angular velocity, rad/s (world). Default zero.
     #[serde(deserialize_with = "check::spin")]
     pub angular_velocity: Vec3,
     /// kg; when absent, `density` (or water's) times the volume.
     #[serde(deserialize_with = "check::opt_positive")]
     pub mass: Option<f32>,
+    /// kg/m³, used when `mass` is absent; default water's ([`DEFAULT_DENSITY`], 1000).
     #[serde(deserialize_with = "check::opt_positive")]
     pub density: Option<f32>,
+    /// Friction coefficient, 0..=1e4; default
+    /// [`DEFAULT_FRICTION`](crate::body::DEFAULT_FRICTION) (0.5).
     #[serde(deserialize_with = "check::opt_friction")]
     pub friction: Option<f32>,
+    /// Coefficient of restitution, 0 (no bounce) to 1; default 0.
     #[serde(deserialize_with = "check::opt_restitution")]
     pub restitution: Option<f32>,
 }
@@ -169,6 +197,7 @@ impl BodyDesc {
             .unwrap_or_else(|| volume * self.density.unwrap_or(DEFAULT_DENSITY))
     }
 
+    /// The collider of `shape`.
     pub fn collider(&self) -> Collider {
         match self.shape {
             ShapeDesc::Sphere(r) => Collider::sphere(r),
@@ -201,57 +230,83 @@ impl Default for BodyDesc {
 }
 
 /// A body or a generated group of copies of a template body (`body`), placed relative to
-/// the template's position.
+/// the template's position (a pile: anywhere in its box).
 #[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
 pub enum BodyGroup {
+    /// One body.
     Single(BodyDesc),
     /// count.x × count.y × count.z copies `spacing` apart.
     Grid {
+        /// The template; the copy at (0, 0, 0) sits at its position.
         body: BodyDesc,
+        /// Copies along x, y and z; at most 100 000 in all.
         #[serde(deserialize_with = "check::grid_count")]
         count: UVec3,
+        /// Distance between neighbouring copies along x, y and z, m.
         spacing: Vec3,
     },
-    /// `count` copies stacked along +Y `spacing` apart, every other one shifted by `jitter`.
+    /// `count` copies stacked along +Y `spacing` apart, shifted alternately by +`jitter`
+    /// and −`jitter`.
     Stack {
+        /// The template; the bottom copy sits at its position (plus `jitter`).
         body: BodyDesc,
+        /// Number of copies, at most 100 000.
         #[serde(deserialize_with = "check::group_count")]
         count: u32,
+        /// Distance between neighbouring copies along +Y, m.
         #[serde(deserialize_with = "check::spacing")]
         spacing: f32,
+        /// Offset, m, added to the 1st, 3rd, … copy and taken from the 2nd, 4th, ….
+        /// Default zero.
         #[serde(default)]
         jitter: Vec3,
     },
     /// A square pyramid: layers of base², (base−1)², …, 1 copies `spacing` apart; `flat`
     /// makes it a one-deep wall (rows of base, base−1, …).
     Pyramid {
+        /// The template; the bottom layer is centred on its position.
         body: BodyDesc,
+        /// Copies along a side of the bottom layer, at most 400.
         #[serde(deserialize_with = "check::pyramid_base")]
         base: u32,
+        /// Distance between neighbouring copies, across and up, m.
         #[serde(deserialize_with = "check::spacing")]
         spacing: f32,
+        /// One copy deep, a wall in the x–y plane. Default false.
         #[serde(default)]
         flat: bool,
     },
     /// `count` copies at seeded random positions in the box `min`..`max`, random turns;
     /// the mass of each is scaled by a random factor in `mass_range` when given.
     Pile {
+        /// The template; its position and rotation are not used.
         body: BodyDesc,
+        /// Number of copies, at most 100 000.
         #[serde(deserialize_with = "check::group_count")]
         count: u32,
+        /// Seed of the random positions, turns and masses: the same seed, the same pile.
         seed: u64,
+        /// Lowest corner of the box, m (world).
         min: Vec3,
+        /// Highest corner of the box, m (world).
         max: Vec3,
+        /// The range (x to y) of the factor each copy's mass is multiplied by; when the
+        /// template has no `mass`, the drawn value is the mass, kg. Default `None`: every
+        /// copy has the template's mass.
         #[serde(default)]
         mass_range: Option<Vec2>,
     },
     /// A row of `count` copies `spacing` apart along `direction`.
     Row {
+        /// The template; the first copy sits at its position.
         body: BodyDesc,
+        /// Number of copies, at most 100 000.
         #[serde(deserialize_with = "check::group_count")]
         count: u32,
+        /// Distance between the centres of neighbouring copies, m.
         #[serde(deserialize_with = "check::spacing")]
         spacing: f32,
+        /// The row's direction, any length; zero gives +X.
         direction: Vec3,
     },
 }

@@ -30,13 +30,20 @@ pub struct SceneEntity;
 /// Why a scene file could not be read: the file and, for syntax errors, line and column.
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
+    /// The file could not be read.
     #[error("could not read scene file: {0}")]
     Io(#[from] std::io::Error),
+    /// The text is not a scene: a syntax error, a refused value, or more than
+    /// [`MAX_SCENE_BODIES`] bodies.
     #[error("{path}:{line}:{col}: {message}")]
     Parse {
+        /// The file, as named to [`SceneDesc::from_ron`].
         path: String,
+        /// Line of the error, counting from 1.
         line: usize,
+        /// Column of the error, counting from 1.
         col: usize,
+        /// What is wrong.
         message: String,
     },
 }
