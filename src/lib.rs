@@ -42,9 +42,10 @@ pub use world::PhysicsWorld;
 /// Everything a game needs: `use tumble::prelude::*;`
 pub mod prelude {
     pub use crate::body::{
-        AngularDamping, AngularInertia, CoefficientCombine, ColliderDensity, ExternalForce,
-        ExternalImpulse, Friction, FrictionCombine, LinearDamping, Mass, PhysicsRejected,
-        Restitution, RestitutionCombine, RigidBody, SleepTimer, Sleeping, Velocity,
+        AngularDamping, AngularInertia, CenterOfMass, CoefficientCombine, ColliderDensity,
+        ExternalForce, ExternalImpulse, Friction, FrictionCombine, LinearDamping, Mass,
+        PhysicsRejected, Restitution, RestitutionCombine, RigidBody, SleepTimer, Sleeping,
+        Velocity,
     };
     pub use crate::collider::Collider;
     pub use crate::diagnostics::PhysicsDiagnosticsPlugin;

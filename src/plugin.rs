@@ -68,6 +68,7 @@ impl PhysicsSystems {
 /// `Time<Fixed>` inserted after adding the plugin wins.
 #[derive(Clone, Debug)]
 pub struct TumblePlugin {
+    /// Fixed steps per second, Hz, clamped into 1..=10000 (not finite: 60). Default 60.
     pub hz: f64,
 }
 
@@ -103,6 +104,7 @@ impl Plugin for TumblePlugin {
         app.register_type::<RigidBody>()
             .register_type::<Velocity>()
             .register_type::<Mass>()
+            .register_type::<CenterOfMass>()
             .register_type::<Restitution>()
             .register_type::<Friction>()
             .register_type::<ExternalForce>()

@@ -37,7 +37,11 @@ pub fn writeback_bodies(
             *vel.bypass_change_detection() = Velocity::ZERO;
             continue;
         }
-        tf.translation = pos;
+        tf.translation = if body.com == Vec3::ZERO {
+            pos
+        } else {
+            pos - rot * body.com
+        };
         tf.rotation = rot;
         vel.linear = s.v;
         vel.angular = s.w;

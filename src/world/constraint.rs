@@ -106,10 +106,8 @@ pub(crate) struct ContactConstraint {
     pub normal: Vec3,
     pub tangent1: Vec3,
     pub tangent2: Vec3,
-    /// Whether each anchor turns with its body when measuring separation. A sphere's
-    /// contact point stays under its centre as it rolls, so its anchor does not turn.
-    pub turn_a: bool,
-    pub turn_b: bool,
+    /// How each anchor moves with its body when measuring separation.
+    pub anchoring: Anchoring,
     /// Whether each body can turn here (a dynamic body with rotation, or a spinning
     /// kinematic one). A static body or one with `LockRotation` runs no angular terms.
     pub spin: [bool; 2],
@@ -168,5 +166,43 @@ pub(crate) fn body(bodies: &[SolverBody], i: u32) -> SolverBody {
 pub(crate) fn store(bodies: &mut [SolverBody], i: u32, b: SolverBody) {
     if i != STATIC {
         bodies[i as usize] = b;
+    }
+}
+
+/// How a contact's anchors move as their bodies turn, when measuring separation.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Anchoring {
+    /// Whether each anchor turns with its body. A sphere's contact point stays under its
+    /// centre as it rolls, so its anchor does not turn.
+    pub turn: [bool; 2],
+    /// For a sphere whose centre of mass is off its centre: the sphere's centre from the
+    /// centre of mass, world frame, start of step (zero otherwise). That arm turns with
+    /// the body while the contact point stays under the sphere's centre, so the anchor
+    /// moves by the arm's turn alone.
+    pub arm: [Vec3; 2],
+}
+
+impl Anchoring {
+    /// Point `p`'s anchors on A and B now, from the bodies' start-of-step centres.
+    #[inline]
+    pub(crate) fn anchors(
+        &self,
+        p: &ConstraintPoint,
+        a: &SolverBody,
+        b: &SolverBody,
+    ) -> (Vec3, Vec3) {
+        let moved = |turn: bool, arm: Vec3, dq: Quat, r: Vec3| {
+            if turn {
+                dq * r
+            } else if arm != Vec3::ZERO {
+                r + (dq * arm - arm)
+            } else {
+                r
+            }
+        };
+        (
+            moved(self.turn[0], self.arm[0], a.dq, p.ra),
+            moved(self.turn[1], self.arm[1], b.dq, p.rb),
+        )
     }
 }

@@ -168,6 +168,7 @@ mod tests {
             body: 0,
             asleep: false,
             shape: collider.shape,
+            offset: Vec3::ZERO,
             pos,
             rot: Quat::IDENTITY,
             friction: 0.5,

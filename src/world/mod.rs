@@ -8,7 +8,8 @@ mod fixed_set;
 mod manifold;
 
 pub(crate) use constraint::{
-    AngularRow, ConstraintPoint, ContactConstraint, ContactParams, body, row_velocity, store,
+    Anchoring, AngularRow, ConstraintPoint, ContactConstraint, ContactParams, body, row_velocity,
+    store,
 };
 pub(crate) use fixed_set::FixedSet;
 pub(crate) use manifold::{MAX_POINTS, Manifold};
@@ -62,6 +63,10 @@ pub(crate) struct BodyState {
     pub q0: Quat,
     pub v0: Vec3,
     pub w0: Vec3,
+    /// The centre of mass in the body's frame, m (its [`CenterOfMass`](crate::body::CenterOfMass);
+    /// zero for most bodies). `x0` and the solver's poses are the centre of mass's; the
+    /// `Transform` is `x − rot·com`.
+    pub com: Vec3,
     /// Principal moments of inertia (body frame) and their inverses (0 for kinematic).
     pub inertia: Vec3,
     pub inv_inertia: Vec3,
@@ -161,6 +166,9 @@ pub(crate) struct ColliderEntry {
     /// A sleeping body, standing in as a static collider this step.
     pub asleep: bool,
     pub shape: Shape,
+    /// The shape's centre relative to its body's centre of mass, body frame, m (minus
+    /// the body's [`CenterOfMass`](crate::body::CenterOfMass); zero for statics).
+    pub offset: Vec3,
     /// Pose at the start of the step.
     pub pos: Vec3,
     pub rot: Quat,
@@ -270,7 +278,17 @@ impl PhysicsWorld {
         self.kinematic_poses.get(&body).map(|k| (k.pos, k.rot))
     }
 
-    /// The current world pose of a body during the step.
+    /// The current world pose of a collider during the step: its body's pose carried to
+    /// the shape's centre, or its own for a static one.
+    pub(crate) fn collider_pose(&self, c: &ColliderEntry) -> (Vec3, Quat) {
+        if c.body == STATIC {
+            return (c.pos, c.rot);
+        }
+        let (p, q) = self.body_pose(c.body as usize);
+        (p + q * c.offset, q)
+    }
+
+    /// The current world pose of a body's centre of mass during the step.
     pub(crate) fn body_pose(&self, i: usize) -> (Vec3, Quat) {
         let (b, s) = (&self.bodies[i], &self.solver_bodies[i]);
         (b.x0 + s.dp, (s.dq * b.q0).normalize())

@@ -83,6 +83,7 @@ type Edited = (
         Changed<Mass>,
         Changed<ColliderDensity>,
         Changed<AngularInertia>,
+        Changed<CenterOfMass>,
         Changed<Collider>,
         Changed<RigidBody>,
         Changed<ExternalForce>,

@@ -32,7 +32,9 @@ pub use lifecycle::{
 };
 pub use settings::{guard_fixed_rate, validate_settings};
 pub use validate::validate;
-use validate::{validate_force, validate_mass_properties, validate_scalars};
+use validate::{
+    validate_center_of_mass, validate_force, validate_mass_properties, validate_scalars,
+};
 
 /// The components prepare reads from each awake body.
 #[derive(QueryData)]
@@ -45,6 +47,7 @@ pub struct BodyItem {
     mass: Option<&'static Mass>,
     density: Option<&'static ColliderDensity>,
     angular_inertia: Option<&'static AngularInertia>,
+    center_of_mass: Option<&'static CenterOfMass>,
     restitution: Option<&'static Restitution>,
     friction: Option<&'static Friction>,
     force: Option<&'static ExternalForce>,
@@ -160,6 +163,7 @@ pub fn prepare_bodies(
         );
         let checked = validate(&tf, &vel, kind, item.mass, shape.as_ref())
             .and_then(|()| validate_force(item.force))
+            .and_then(|()| validate_center_of_mass(item.center_of_mass))
             .and_then(|()| {
                 validate_scalars(item.friction, item.restitution, damping, item.gravity_scale)
             });
@@ -184,10 +188,16 @@ pub fn prepare_bodies(
             }
         }
         let index = world.bodies.len() as u32;
+        // The solver works at the centre of mass; the collider sits at the origin.
+        let com = match (kind, item.center_of_mass) {
+            (RigidBody::Dynamic, Some(c)) => c.0,
+            _ => Vec3::ZERO,
+        };
         let input = BodyInput {
             entity,
             kind,
-            pos,
+            pos: pos + rot * com,
+            com,
             rot,
             vel,
             mass: MassInput {
@@ -222,6 +232,7 @@ pub fn prepare_bodies(
                 body: index,
                 asleep: false,
                 shape,
+                offset: -com,
                 pos,
                 rot,
                 friction: item.friction.map_or(DEFAULT_FRICTION, |f| f.0),
@@ -344,6 +355,7 @@ fn fixed_entry(
         body: STATIC,
         asleep: false,
         shape: scaled_shape(entity, collider, tf),
+        offset: Vec3::ZERO,
         pos: tf.translation,
         rot: tf.rotation.normalize(),
         friction: friction.map_or(DEFAULT_FRICTION, |f| f.0),
@@ -359,7 +371,9 @@ fn fixed_entry(
 struct BodyInput<'a> {
     entity: Entity,
     kind: RigidBody,
+    /// Where the centre of mass is, and where it sits in the body's frame.
     pos: Vec3,
+    com: Vec3,
     rot: Quat,
     vel: Velocity,
     mass: MassInput<'a>,
@@ -422,6 +436,7 @@ fn gather_body(b: BodyInput, settings: &SolverSettings) -> (BodyState, SolverBod
         kind: b.kind,
         x0: b.pos,
         q0: b.rot,
+        com: b.com,
         v0: v,
         w0: w,
         inertia,
@@ -434,7 +449,8 @@ fn gather_body(b: BodyInput, settings: &SolverSettings) -> (BodyState, SolverBod
         },
         gravity_scale: b.gravity_scale,
         rotation_locked: b.rotation_locked && dynamic,
-        round: matches!(b.shape, None | Some(Shape::Sphere { .. })),
+        // A sphere turning about its centre: its contact point stays under it.
+        round: matches!(b.shape, None | Some(Shape::Sphere { .. })) && b.com == Vec3::ZERO,
         in_contact: false,
         sleep_time: 0.0,
         driven: false,

@@ -103,6 +103,19 @@ pub(super) fn validate_scalars(
 /// inverse all finite and positive. A shape too small for its density to give a usable
 /// mass (a 1e-12 m sphere without `Mass`) is refused here rather than handed to the
 /// solver as an infinite inverse mass.
+/// A [`CenterOfMass`] is finite and within [`limits::MAX_SIZE`] of the origin.
+pub(super) fn validate_center_of_mass(
+    com: Option<&CenterOfMass>,
+) -> Result<(), (&'static str, String)> {
+    match com {
+        Some(c) if !(c.0.is_finite() && c.0.abs().max_element() <= limits::MAX_SIZE) => Err((
+            "CenterOfMass",
+            format!("{}: must be finite and within ±{} m", c.0, limits::MAX_SIZE),
+        )),
+        _ => Ok(()),
+    }
+}
+
 pub(super) fn validate_mass_properties(
     mass: f32,
     inertia: Vec3,

@@ -109,7 +109,7 @@ pub fn update_bounds(world: &mut PhysicsWorld, margin: f32) {
         let c = world.colliders[ci];
         let (mut lo, mut hi) = c.shape.aabb(c.pos, c.rot);
         if c.body != STATIC {
-            let (p, q) = world.body_pose(c.body as usize);
+            let (p, q) = world.collider_pose(&c);
             let (lo1, hi1) = c.shape.aabb(p, q);
             (lo, hi) = (lo.min(lo1), hi.max(hi1));
         }

@@ -45,6 +45,7 @@ fn scene(seed: u64) -> Vec<ColliderEntry> {
                 body,
                 asleep: false,
                 shape,
+                offset: Vec3::ZERO,
                 pos,
                 rot,
                 friction: 0.5,

@@ -7,9 +7,18 @@ use bevy::prelude::*;
 use super::stiffness::{contact_softness, pair_size};
 use crate::collider::Shape;
 use crate::world::{
-    AngularRow, BodyState, ColliderEntry, ConstraintPoint, ContactConstraint, ContactParams,
-    MAX_POINTS, Manifold, STATIC, SolverBody, body, is_isotropic, row_velocity,
+    Anchoring, AngularRow, BodyState, ColliderEntry, ConstraintPoint, ContactConstraint,
+    ContactParams, MAX_POINTS, Manifold, STATIC, SolverBody, body, is_isotropic, row_velocity,
 };
+
+/// A turning sphere's centre from its body's centre of mass (zero when they coincide,
+/// and for every other shape: their whole anchor turns).
+fn sphere_arm(c: &ColliderEntry, spin: bool, centre_of_mass: Vec3) -> Vec3 {
+    match c.shape {
+        Shape::Sphere { .. } if spin && c.offset != Vec3::ZERO => c.pos - centre_of_mass,
+        _ => Vec3::ZERO,
+    }
+}
 
 /// Whether a body has angular terms in a contact: it turns now or impulses can turn it.
 fn spins(b: &SolverBody) -> bool {
@@ -134,6 +143,10 @@ pub fn prepare_constraints(
         let size = pair_size(&ca.shape, &cb.shape);
         let (softness, r) = contact_softness(&stiffness, sa.inv_mass, sb.inv_mass, load, size);
         max_ratio = max_ratio.max(r);
+        let arm = [
+            sphere_arm(ca, spin[0], centre(ca)),
+            sphere_arm(cb, spin[1], centre(cb)),
+        ];
         let mut c = ContactConstraint {
             a: ca.body,
             b: cb.body,
@@ -141,10 +154,16 @@ pub fn prepare_constraints(
             normal: m.normal,
             tangent1: t1,
             tangent2: t2,
-            turn_a: spin[0] && !matches!(ca.shape, Shape::Sphere { .. }),
-            turn_b: spin[1] && !matches!(cb.shape, Shape::Sphere { .. }),
+            anchoring: Anchoring {
+                turn: [
+                    spin[0] && !matches!(ca.shape, Shape::Sphere { .. }),
+                    spin[1] && !matches!(cb.shape, Shape::Sphere { .. }),
+                ],
+                arm,
+            },
             spin,
-            refresh: (spin[0] && anisotropic(ca.body)) || (spin[1] && anisotropic(cb.body)),
+            refresh: (spin[0] && (anisotropic(ca.body) || arm[0] != Vec3::ZERO))
+                || (spin[1] && (anisotropic(cb.body) || arm[1] != Vec3::ZERO)),
             report: ca.filter.events || cb.filter.events,
             friction: if stiffness.friction { m.friction } else { 0.0 },
             restitution: m.restitution,
@@ -197,7 +216,18 @@ pub fn refresh_rows(bodies: &[SolverBody], constraints: &mut [ContactConstraint]
     for c in constraints.iter_mut().filter(|c| c.refresh) {
         let (a, b) = (body(bodies, c.a), body(bodies, c.b));
         let linear = a.inv_mass + b.inv_mass;
+        let (anchoring, rolls) = (c.anchoring, c.anchoring.arm != [Vec3::ZERO; 2]);
         for p in c.points[..c.len].iter_mut() {
+            if rolls {
+                // A sphere rolling about an off-centre centre of mass: its contact point
+                // stays under its centre, so the lever arm turns with the centre, and
+                // the rows follow it (a start-of-step arm lags the rocking and pumps it:
+                // a weeble's swing grew 20 % in three periods).
+                let (ra, rb) = anchoring.anchors(p, &a, &b);
+                p.normal_row = AngularRow::new(&a, &b, ra, rb, c.normal);
+                p.tangent_rows =
+                    [c.tangent1, c.tangent2].map(|t| AngularRow::new(&a, &b, ra, rb, t));
+            }
             let rows = std::iter::once(&mut p.normal_row).chain(p.tangent_rows.iter_mut());
             for row in rows {
                 row.ia = a.inv_inertia * row.ra;

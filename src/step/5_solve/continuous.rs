@@ -50,12 +50,15 @@ pub fn sweep_against_fixed(
         }
         let (dp, dq) = (s.dp, s.dq);
         let slop = (CONTINUOUS_SLOP * margin).min(SLOP_OF_THICKNESS * thickness);
-        let at = |t: f32| ColliderEntry {
-            pos: b.x0 + dp * t,
-            rot: (Quat::IDENTITY.slerp(dq, t) * b.q0).normalize(),
-            ..c
+        let at = |t: f32| {
+            let rot = (Quat::IDENTITY.slerp(dq, t) * b.q0).normalize();
+            ColliderEntry {
+                pos: b.x0 + dp * t + rot * c.offset,
+                rot,
+                ..c
+            }
         };
-        let (lo0, hi0) = c.shape.aabb(b.x0, b.q0);
+        let (lo0, hi0) = c.shape.aabb(c.pos, c.rot);
         let end = at(1.0);
         let (lo1, hi1) = c.shape.aabb(end.pos, end.rot);
         found.clear();

@@ -94,6 +94,7 @@ pub fn solve(
     let inv_h = 1.0 / h;
     for c in constraints.iter_mut() {
         let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
+        let anchoring = c.anchoring;
         let dp = b.dp - a.dp;
         let spin = c.spin;
         // A manifold's normal rows are coupled through its two bodies (a cube's corner
@@ -105,8 +106,7 @@ pub fn solve(
         for _ in 0..sweeps {
             let (mut largest, mut total, mut capped) = (0.0f32, 0.0f32, false);
             for p in c.points[..c.len].iter_mut() {
-                let ca = if c.turn_a { a.dq * p.ra } else { p.ra };
-                let cb = if c.turn_b { b.dq * p.rb } else { p.rb };
+                let (ca, cb) = anchoring.anchors(p, &a, &b);
                 let s = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
                 let (bias, mass_scale, impulse_scale) = if s > 0.0 {
                     (s * inv_h, 1.0, 0.0)
@@ -213,10 +213,10 @@ pub fn apply_restitution(
 pub fn stop_approach(bodies: &mut [SolverBody], constraints: &mut [ContactConstraint]) {
     for c in constraints.iter_mut() {
         let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
+        let anchoring = c.anchoring;
         let dp = b.dp - a.dp;
         for p in c.points[..c.len].iter_mut() {
-            let ca = if c.turn_a { a.dq * p.ra } else { p.ra };
-            let cb = if c.turn_b { b.dq * p.rb } else { p.rb };
+            let (ca, cb) = anchoring.anchors(p, &a, &b);
             let s = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
             let vn = row_velocity(&a, &b, c.normal, &p.normal_row, c.spin);
             if s > 0.0 || vn >= 0.0 {
