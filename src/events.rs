@@ -250,7 +250,7 @@ impl TouchingPair {
 }
 
 /// Scratch kept between steps: this step's reported pairs with their contact data, and
-/// a spare map to swap with [`PhysicsWorld::touching`].
+/// a spare map to swap with `PhysicsWorld::touching`.
 #[derive(Default)]
 pub struct ReportScratch {
     now: Vec<(TouchingPair, ContactData)>,

@@ -7,6 +7,7 @@ use bevy::prelude::*;
 
 use super::{SceneDesc, SceneError};
 
+/// Loads `.scene.ron` files as [`SceneDesc`] assets, checked field by field.
 #[derive(Default, TypePath)]
 pub struct SceneLoader;
 

@@ -7,13 +7,16 @@ use bevy::render::view::screenshot::{Screenshot, save_to_disk};
 /// Take a screenshot of the primary window at `frame` and save it to `path`.
 #[derive(Clone, Debug)]
 pub struct CaptureRequest {
+    /// The frame (counted from the app's start) to capture.
     pub frame: u32,
+    /// Where the PNG goes.
     pub path: std::path::PathBuf,
 }
 
 /// Takes the requested shots, then exits the app a few frames after the last.
 #[derive(Resource, Clone, Debug, Default)]
 pub struct CapturePlugin {
+    /// The shots to take, in any order.
     pub shots: Vec<CaptureRequest>,
 }
 

@@ -5,12 +5,17 @@ use bevy::prelude::*;
 
 use crate::world::{PhysicsWorld, STATIC};
 
+/// Draws the gizmos [`DebugRenderSettings`] switches on.
 pub struct DebugRenderPlugin;
 
+/// Which debug gizmos are drawn (all off by default).
 #[derive(Resource, Clone, Copy, Debug, Default)]
 pub struct DebugRenderSettings {
+    /// Contact points and their normals.
     pub contacts: bool,
+    /// The broad phase's swept, fattened bounding boxes.
     pub aabbs: bool,
+    /// Each body's linear velocity as an arrow (0.25 m per m/s).
     pub velocities: bool,
 }
 

@@ -10,6 +10,7 @@ use bevy_panorbit_camera::PanOrbitCamera;
 use crate::body::{ExternalForce, RigidBody, Sleeping};
 pub use crate::interaction::{DragPullPlugin, Dragged, Selected};
 
+/// Picking a body and dragging it with the mouse (a spring pulls it to the cursor).
 pub struct DragBodiesPlugin;
 
 impl Plugin for DragBodiesPlugin {

@@ -6,12 +6,15 @@ use bevy::prelude::*;
 use crate::body::{Mass, RigidBody};
 use crate::collider::{Collider, Shape};
 
+/// Gives every body a mesh for its collider, coloured by its mass.
 pub struct BodyMeshPlugin;
 
 /// The mass range (kg) the colour scale spans, logarithmically.
 #[derive(Resource, Clone, Copy, Debug)]
 pub struct MassColors {
+    /// Mass at the light end of the scale, kg.
     pub light: f32,
+    /// Mass at the heavy end, kg.
     pub heavy: f32,
 }
 

@@ -18,8 +18,11 @@ pub fn plugin(app: &mut App) {
 /// The scene files, sorted by name, and which one runs.
 #[derive(Resource, Default)]
 pub struct DemoScenes {
+    /// One handle per scene file, in name order.
     pub handles: Vec<Handle<SceneDesc>>,
+    /// The files' names, in the same order.
     pub names: Vec<String>,
+    /// Index of the scene that runs.
     pub current: usize,
     /// The last load error, shown in the panel.
     pub error: Option<String>,

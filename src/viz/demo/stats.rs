@@ -16,20 +16,27 @@ pub fn plugin(app: &mut App) {
         .add_systems(FixedUpdate, measure_scene.after(PhysicsSystems::Sleep));
 }
 
+/// What the panel shows of the running scene, measured after each step.
 #[derive(Resource, Default, Clone, Copy, Debug)]
 pub struct SceneStats {
+    /// Dynamic bodies in the scene.
     pub bodies: usize,
+    /// Of those, awake.
     pub awake: usize,
+    /// Collider pairs that touch.
     pub touching_pairs: usize,
+    /// Their contact points.
     pub contact_points: usize,
-    /// Kinetic + potential energy, J; and |Σ m·v|, kg·m/s.
+    /// Kinetic + potential energy, J.
     pub energy: f32,
+    /// |Σ m·v|, kg·m/s.
     pub momentum: f32,
 }
 
 /// (simulated time, energy, momentum), the last 600 steps.
 #[derive(Resource, Default)]
 pub struct EnergyHistory {
+    /// (s, J, kg·m/s), oldest first.
     pub samples: VecDeque<(f64, f64, f64)>,
 }
 
