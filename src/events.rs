@@ -26,8 +26,8 @@ use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 
 use crate::settings::{CONTINUOUS_SLOP, SolverSettings};
+use crate::world::PhysicsWorld;
 use crate::world::{MAX_POINTS, Manifold};
-use crate::world::{PhysicsWorld, STATIC};
 
 /// Opts a collider in to [`CollisionStart`] / [`CollisionEnd`]: as messages for its
 /// pairs, and as entity events on itself.
@@ -90,7 +90,8 @@ pub struct CollisionStart {
     pub collider1: Entity,
     /// The other collider.
     pub collider2: Entity,
-    /// The colliders' bodies: the collider itself, or `None` for a static collider.
+    /// The colliders' bodies: the collider itself, the body above a compound body's part,
+    /// or `None` for a static collider.
     pub body1: Option<Entity>,
     /// `collider2`'s body: the collider itself, or `None` for a static collider.
     pub body2: Option<Entity>,
@@ -159,8 +160,9 @@ impl PhysicsWorld {
         )
     }
 
-    /// The contacts a collider has as of the last step (touching ones only). Sleeping
-    /// bodies' contacts are not kept: a sleeper has none until it wakes.
+    /// The contacts a collider has as of the last step (touching ones only); for a
+    /// compound body's entity, those of all its colliders. Sleeping bodies' contacts are
+    /// not kept: a sleeper has none until it wakes.
     pub fn contacts_of(&self, collider: Entity) -> impl Iterator<Item = Contact> + '_ {
         let h = self.last_substep;
         self.manifolds
@@ -168,9 +170,13 @@ impl PhysicsWorld {
             .filter(|m| Self::is_touching(m))
             .filter_map(move |m| {
                 let (a, b) = self.manifold_entities(m);
-                let (other, sign) = if a == collider {
+                let (oa, ob) = (
+                    self.colliders[m.a as usize].owner,
+                    self.colliders[m.b as usize].owner,
+                );
+                let (other, sign) = if a == collider || (oa == collider && ob != collider) {
                     (b, 1.0)
-                } else if b == collider {
+                } else if b == collider || (ob == collider && oa != collider) {
                     (a, -1.0)
                 } else {
                     return None;
@@ -202,8 +208,8 @@ pub struct TouchingPair {
     pub colliders: (Entity, Entity),
     /// Whether each has [`CollisionEventsEnabled`].
     pub events: (bool, bool),
-    /// Whether each is a body (not a static collider).
-    pub bodies: (bool, bool),
+    /// Each one's body (`None`: a static collider).
+    pub bodies: (Option<Entity>, Option<Entity>),
     /// One of them is a sensor.
     pub sensor: bool,
 }
@@ -221,17 +227,13 @@ impl TouchingPair {
         }
     }
 
-    fn body(entity: Entity, has: bool) -> Option<Entity> {
-        has.then_some(entity)
-    }
-
     fn start(self, contact: ContactData) -> CollisionStart {
         let (c1, c2) = self.colliders;
         CollisionStart {
             collider1: c1,
             collider2: c2,
-            body1: Self::body(c1, self.bodies.0),
-            body2: Self::body(c2, self.bodies.1),
+            body1: self.bodies.0,
+            body2: self.bodies.1,
             sensor: self.sensor,
             contact,
         }
@@ -242,8 +244,8 @@ impl TouchingPair {
         CollisionEnd {
             collider1: c1,
             collider2: c2,
-            body1: Self::body(c1, self.bodies.0),
-            body2: Self::body(c2, self.bodies.1),
+            body1: self.bodies.0,
+            body2: self.bodies.1,
             sensor: self.sensor,
         }
     }
@@ -307,7 +309,7 @@ pub fn report_collisions(
         let pair = TouchingPair {
             colliders: (a.entity, b.entity),
             events: (a.filter.events, b.filter.events),
-            bodies: (a.body != STATIC, b.body != STATIC),
+            bodies: (a.body_entity(), b.body_entity()),
             sensor,
         };
         let flip = a.entity > b.entity;

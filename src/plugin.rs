@@ -139,8 +139,8 @@ impl Plugin for TumblePlugin {
                     prepare::validate_settings,
                     prepare::readmit_rejected,
                     prepare::sync_fixed_set,
-                    prepare::apply_impulses,
                     prepare::prepare_bodies,
+                    prepare::clear_impulses,
                 )
                     .chain()
                     .in_set(S::Prepare),

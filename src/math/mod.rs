@@ -6,7 +6,9 @@
 
 mod ballistic;
 mod explicit_euler;
+mod frames;
 mod gyroscopic;
+mod principal;
 mod rk4;
 mod semi_implicit;
 mod softness;
@@ -18,7 +20,9 @@ use crate::settings::Integrator;
 use crate::world::{BodyState, ForceModel};
 
 pub use ballistic::ballistic;
+pub use frames::to_parent_frame;
 pub use gyroscopic::solve_gyroscopic_midpoint;
+pub use principal::{part_tensor, principal_axes};
 pub use softness::Softness;
 
 /// One substep of free motion.

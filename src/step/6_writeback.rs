@@ -5,6 +5,7 @@
 use bevy::prelude::*;
 
 use crate::body::{PhysicsRejected, RigidBody, Velocity};
+use crate::math::to_parent_frame;
 use crate::world::{KinematicPose, PhysicsWorld};
 
 pub fn writeback_bodies(
@@ -37,12 +38,21 @@ pub fn writeback_bodies(
             *vel.bypass_change_detection() = Velocity::ZERO;
             continue;
         }
-        tf.translation = if body.com == Vec3::ZERO {
+        // The solver's pose is the principal frame's at the centre of mass.
+        let rot = if body.frame == Quat::IDENTITY {
+            rot
+        } else {
+            (rot * body.frame.inverse()).normalize()
+        };
+        let origin = if body.com == Vec3::ZERO {
             pos
         } else {
             pos - rot * body.com
         };
-        tf.rotation = rot;
+        (tf.translation, tf.rotation) = match world.parent_frames.get(body.parent as usize) {
+            Some(frame) => to_parent_frame(frame, origin, rot),
+            None => (origin, rot),
+        };
         vel.linear = s.v;
         vel.angular = s.w;
         if body.kind == RigidBody::Kinematic {

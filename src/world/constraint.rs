@@ -58,6 +58,7 @@ pub(crate) struct AngularRow {
 }
 
 impl AngularRow {
+    #[inline]
     pub(crate) fn new(a: &SolverBody, b: &SolverBody, ra: Vec3, rb: Vec3, d: Vec3) -> Self {
         let (ra, rb) = (ra.cross(d), rb.cross(d));
         Self {
@@ -69,6 +70,7 @@ impl AngularRow {
     }
 
     /// The row's angular share of the inverse effective mass.
+    #[inline]
     pub(crate) fn inv_mass(&self, spin: [bool; 2]) -> f32 {
         let a = if spin[0] { self.ra.dot(self.ia) } else { 0.0 };
         let b = if spin[1] { self.rb.dot(self.ib) } else { 0.0 };
@@ -154,6 +156,7 @@ pub(crate) struct ContactParams {
 }
 
 /// A constraint's body `i`: the solver body, or the shared static one.
+#[inline]
 pub(crate) fn body(bodies: &[SolverBody], i: u32) -> SolverBody {
     if i == STATIC {
         STATIC_BODY
@@ -163,6 +166,7 @@ pub(crate) fn body(bodies: &[SolverBody], i: u32) -> SolverBody {
 }
 
 /// Stores a constraint's body back (nothing for the static one).
+#[inline]
 pub(crate) fn store(bodies: &mut [SolverBody], i: u32, b: SolverBody) {
     if i != STATIC {
         bodies[i as usize] = b;
@@ -180,6 +184,8 @@ pub(crate) struct Anchoring {
     /// the body while the contact point stays under the sphere's centre, so the anchor
     /// moves by the arm's turn alone.
     pub arm: [Vec3; 2],
+    /// Some arm is not zero.
+    pub rolls: bool,
 }
 
 impl Anchoring {
@@ -191,14 +197,14 @@ impl Anchoring {
         a: &SolverBody,
         b: &SolverBody,
     ) -> (Vec3, Vec3) {
+        if !self.rolls {
+            let ca = if self.turn[0] { a.dq * p.ra } else { p.ra };
+            let cb = if self.turn[1] { b.dq * p.rb } else { p.rb };
+            return (ca, cb);
+        }
+        // Only a sphere with an off-centre centre of mass comes here: its arm turns.
         let moved = |turn: bool, arm: Vec3, dq: Quat, r: Vec3| {
-            if turn {
-                dq * r
-            } else if arm != Vec3::ZERO {
-                r + (dq * arm - arm)
-            } else {
-                r
-            }
+            if turn { dq * r } else { r + (dq * arm - arm) }
         };
         (
             moved(self.turn[0], self.arm[0], a.dq, p.ra),

@@ -33,6 +33,8 @@ pub(crate) struct FixedSet {
     dirty: bool,
     /// Scratch for the median width, kept so a rebuild does not allocate.
     widths: Vec<f32>,
+    /// The parts of sleeping compound bodies, by body: they leave with it.
+    parts: HashMap<Entity, Vec<Entity>>,
 }
 
 impl FixedSet {
@@ -57,6 +59,12 @@ impl FixedSet {
     pub fn insert(&mut self, mut entry: ColliderEntry) {
         (entry.aabb_min, entry.aabb_max) = entry.shape.aabb(entry.pos, entry.rot);
         entry.body = STATIC;
+        if entry.owner != entry.entity {
+            let parts = self.parts.entry(entry.owner).or_default();
+            if !parts.contains(&entry.entity) {
+                parts.push(entry.entity);
+            }
+        }
         match self.slots.get(&entry.entity) {
             Some(&i) => self.entries[i as usize] = entry,
             None => {
@@ -69,6 +77,12 @@ impl FixedSet {
 
     /// Takes the entity's entry out; returns whether it was there.
     pub fn remove(&mut self, entity: Entity) -> bool {
+        // A compound body's parts leave with it.
+        if let Some(parts) = self.parts.remove(&entity) {
+            for part in parts {
+                self.remove(part);
+            }
+        }
         let Some(i) = self.slots.remove(&entity) else {
             return false;
         };
@@ -164,11 +178,13 @@ mod tests {
     fn entry(entity: u32, collider: Collider, pos: Vec3) -> ColliderEntry {
         ColliderEntry {
             entity: Entity::from_raw_u32(entity).unwrap(),
+            owner: Entity::from_raw_u32(entity).unwrap(),
             key: entity as u64,
             body: 0,
             asleep: false,
             shape: collider.shape,
             offset: Vec3::ZERO,
+            local_rot: Quat::IDENTITY,
             pos,
             rot: Quat::IDENTITY,
             friction: 0.5,

@@ -67,6 +67,9 @@ pub(crate) struct BodyState {
     /// zero for most bodies). `x0` and the solver's poses are the centre of mass's; the
     /// `Transform` is `x − rot·com`.
     pub com: Vec3,
+    /// The rotation of the body's principal axes in its own frame (identity but for a
+    /// compound body): the solver's orientation is the body's times this.
+    pub frame: Quat,
     /// Principal moments of inertia (body frame) and their inverses (0 for kinematic).
     pub inertia: Vec3,
     pub inv_inertia: Vec3,
@@ -87,7 +90,13 @@ pub(crate) struct BodyState {
     /// and the target it is still on its way to after this step.
     pub driven: bool,
     pub target: Option<(Vec3, Quat)>,
+    /// Index of its parents' composed transform in [`PhysicsWorld::parent_frames`], or
+    /// [`NO_PARENT`]: its `Transform` is written back in that frame.
+    pub parent: u32,
 }
+
+/// [`BodyState::parent`] of a body without a parent.
+pub(crate) const NO_PARENT: u32 = u32::MAX;
 
 /// The pose tumble wrote to a kinematic body's Transform at the end of a step, and
 /// whether the user's Transform drove it there. Next step, a Transform that differs is
@@ -146,6 +155,13 @@ impl Default for ContactFilter {
     }
 }
 
+impl ColliderEntry {
+    /// The body this collider belongs to, or `None` for a static collider.
+    pub fn body_entity(&self) -> Option<Entity> {
+        (self.body != STATIC || self.asleep).then_some(self.owner)
+    }
+}
+
 impl ContactFilter {
     /// Whether two colliders' pair is looked at all: their layers interact and they are
     /// not both sensors.
@@ -158,6 +174,9 @@ impl ContactFilter {
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct ColliderEntry {
     pub entity: Entity,
+    /// The body it belongs to: itself, or for a part of a compound body the body above
+    /// it. Static colliders own themselves.
+    pub owner: Entity,
     /// The collider's [`SpawnOrder`](crate::body::SpawnOrder): pairs are visited in this
     /// order, whatever the ECS's.
     pub key: u64,
@@ -169,6 +188,9 @@ pub(crate) struct ColliderEntry {
     /// The shape's centre relative to its body's centre of mass, body frame, m (minus
     /// the body's [`CenterOfMass`](crate::body::CenterOfMass); zero for statics).
     pub offset: Vec3,
+    /// The shape's rotation relative to its body's principal frame (identity but for
+    /// the parts of a compound body).
+    pub local_rot: Quat,
     /// Pose at the start of the step.
     pub pos: Vec3,
     pub rot: Quat,
@@ -208,6 +230,8 @@ pub struct PhysicsWorld {
     pub(crate) impulse_cache: HashMap<(Entity, Entity), Manifold>,
     /// Sleeping bodies that an awake body touched this step: they wake.
     pub(crate) wake: Vec<Entity>,
+    /// The composed transforms of this step's parented bodies' parents (uniform scale).
+    pub(crate) parent_frames: Vec<Transform>,
     /// Kinematic bodies' poses as written at the end of the last step.
     pub(crate) kinematic_poses: HashMap<Entity, KinematicPose>,
     /// Pairs (ordered by entity) that touched last step, for the collision messages.
@@ -285,7 +309,11 @@ impl PhysicsWorld {
             return (c.pos, c.rot);
         }
         let (p, q) = self.body_pose(c.body as usize);
-        (p + q * c.offset, q)
+        if c.local_rot == Quat::IDENTITY {
+            (p + q * c.offset, q)
+        } else {
+            (p + q * c.offset, (q * c.local_rot).normalize())
+        }
     }
 
     /// The current world pose of a body's centre of mass during the step.

@@ -24,15 +24,16 @@
 use bevy::ecs::query::QueryData;
 use bevy::prelude::*;
 
-use super::hierarchy::{ChainQuery, unsupported, world_transform};
+use super::compound::{BodyPart, PartItem, collect_parts, part_entry};
+use super::hierarchy::{ChainQuery, owner_body, parent_frame, unsupported, world_transform};
 use super::lifecycle::PendingRechecks;
-use super::{FilterItem, fixed_entry, order_key, reject, validate_static};
+use super::{FilterItem, Part, fixed_entry, order_key, reject, validate_static};
 use crate::body::*;
 use crate::collider::Collider;
 use crate::effects::Effects;
 use crate::layers::CollisionLayers;
 use crate::settings::{GlobalForce, SolverSettings};
-use crate::world::PhysicsWorld;
+use crate::world::{ColliderEntry, PhysicsWorld, STATIC};
 
 /// Tumble's bookkeeping: this entity is static or asleep and lives in the fixed set, so
 /// the per-step gather skips it. Added and removed by tumble; don't insert it yourself.
@@ -53,6 +54,8 @@ pub struct FixedItem {
     order: Option<&'static SpawnOrder>,
     filter: FilterItem,
     parent: Has<ChildOf>,
+    children: Option<&'static Children>,
+    density: Option<&'static ColliderDensity>,
 }
 
 /// Marked entities with a change that may move them, resize them or wake them (of a
@@ -116,6 +119,7 @@ pub struct SyncScratch {
     /// Per fixed entry: woken already in this search.
     woken: Vec<bool>,
     wake_list: Vec<Entity>,
+    parts: Vec<Part>,
 }
 
 /// Brings the fixed set up to date with what changed since the last step (see the module
@@ -126,7 +130,17 @@ pub fn sync_fixed_set(
     mut world: ResMut<PhysicsWorld>,
     effects: Res<Effects>,
     global: Res<GlobalForce>,
-    unmarked: Query<Entity, (With<Collider>, Without<RigidBody>, Unmarked)>,
+    unmarked: Query<
+        Entity,
+        (
+            With<Collider>,
+            Without<RigidBody>,
+            Without<BodyPart>,
+            Unmarked,
+        ),
+    >,
+    part_edits: Query<Entity, (With<BodyPart>, Or<(Changed<Transform>, Changed<Collider>)>)>,
+    part_items: Query<PartItem>,
     fell_asleep: Query<Entity, (With<Sleeping>, Unmarked)>,
     changed: Query<(Entity, Has<Sleeping>, Edits), ChangedFilter>,
     sleepers: Query<Entity, (With<Sleeping>, With<InFixedSet>)>,
@@ -142,6 +156,7 @@ pub fn sync_fixed_set(
         disturbed,
         woken,
         wake_list,
+        parts,
     } = &mut *scratch;
     recheck.clear();
     disturbed.clear();
@@ -162,6 +177,7 @@ pub fn sync_fixed_set(
         (!same_pose || edits.other_changed()).then_some((e, sleeping))
     }));
     recheck.extend(unmarked.iter().map(|e| (e, false)));
+    recheck.extend(part_edits.iter().map(|e| (e, false)));
     recheck.extend(fell_asleep.iter().map(|e| (e, wake_all)));
     recheck.extend(pending.entities.drain(..).map(|e| (e, false)));
     if recheck.is_empty() {
@@ -173,6 +189,12 @@ pub fn sync_fixed_set(
 
     for &(entity, wake) in recheck.iter() {
         let old = world.fixed.get(entity).copied();
+        // A compound body's part that changed or left: its sleeping body wakes.
+        if let Some(o) = old.filter(|o| o.owner != entity)
+            && let Ok(mut owner) = commands.get_entity(o.owner)
+        {
+            owner.try_remove::<Sleeping>();
+        }
         let Ok(mut item) = items.get(entity) else {
             // Despawned (or lost its Transform): whatever slept on it wakes.
             disturbed.extend(old.map(|c| (c.aabb_min, c.aabb_max)));
@@ -188,7 +210,20 @@ pub fn sync_fixed_set(
             let (tf, under_body) = world_transform(entity, &chain);
             let body = item.kind.is_some_and(|k| *k != RigidBody::Static);
             let collider = item.collider.is_some();
-            if let Some(e) = unsupported(body, collider, item.transform, &tf, under_body) {
+            let frame = parent_frame(entity, &chain);
+            if under_body && collider && !body {
+                // A part of the body above it: that body's gather (or its fixed-set
+                // entry, asleep) places it. A changed part wakes its sleeping body.
+                if let Some(owner) = owner_body(entity, &chain) {
+                    commands.entity(owner).try_remove::<Sleeping>();
+                }
+                commands
+                    .entity(entity)
+                    .insert(BodyPart)
+                    .try_remove::<InFixedSet>();
+                continue;
+            }
+            if let Some(e) = unsupported(body, &frame, under_body) {
                 disturbed.extend(old.map(|c| (c.aabb_min, c.aabb_max)));
                 world.fixed.remove(entity);
                 reject(&mut commands, entity, e);
@@ -259,6 +294,23 @@ pub fn sync_fixed_set(
                 world.fixed.remove(entity);
             }
         }
+        // A compound body's parts sleep with it (a static one's stay).
+        if let Some(children) = item.children {
+            parts.clear();
+            let density = item.density.map(|d| d.0);
+            collect_parts(children, item.transform.scale, density, &part_items, parts);
+            let at = (
+                item.transform.translation,
+                item.transform.rotation.normalize(),
+            );
+            for p in parts.iter() {
+                let entry = part_entry(p, (entity, STATIC), at, (Vec3::ZERO, Quat::IDENTITY));
+                world.fixed.insert(ColliderEntry {
+                    asleep: item.sleeping,
+                    ..entry
+                });
+            }
+        }
         if !item.marked {
             commands.entity(entity).insert(InFixedSet);
         }
@@ -291,7 +343,7 @@ fn wake_neighbours(
             let c = &entries[i as usize];
             if c.asleep && !woken[i as usize] {
                 woken[i as usize] = true;
-                list.push(c.entity);
+                list.push(c.owner);
                 disturbed.push((c.aabb_min, c.aabb_max));
             }
         });

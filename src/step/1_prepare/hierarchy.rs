@@ -1,9 +1,12 @@
 //! Entities with a parent. A static collider under a parent is placed by its whole chain
 //! of transforms (a glTF level's nested meshes), read at the moment it enters the fixed
 //! set: `GlobalTransform` would still be the identity in the first fixed step after a
-//! spawn. A collider under a `RigidBody` (a compound body) and a body under a parent that
-//! is not at the origin are not supported yet: they are refused, with the reason, rather
-//! than simulated in the wrong place.
+//! spawn. A collider under a body is a part of that body (see `compound`). A body under a
+//! parent is simulated in the world and written back in its
+//! parent's frame: its `Transform` stays local, and a moved parent carries it along. What
+//! is not supported is refused with the reason rather than simulated in the wrong place:
+//! a body under another body (make them siblings), and a body under a parent scaled
+//! unevenly (its frame would shear).
 
 use bevy::prelude::*;
 
@@ -36,24 +39,46 @@ pub fn world_transform(entity: Entity, chain: &ChainQuery) -> (Transform, bool) 
     (world, under_body)
 }
 
-/// Why an entity with a parent can't be simulated yet, if it can't.
+/// The nearest ancestor that is a rigid body: the owner of a compound body's part.
+pub fn owner_body(entity: Entity, chain: &ChainQuery) -> Option<Entity> {
+    let mut parent = chain.get(entity).ok()?.1;
+    for _ in 0..MAX_DEPTH {
+        let p = parent?.parent();
+        let (_, next, is_body) = chain.get(p).ok()?;
+        if is_body {
+            return Some(p);
+        }
+        parent = next;
+    }
+    None
+}
+
+/// The composed transform of an entity's parents (identity without a parent).
+pub fn parent_frame(entity: Entity, chain: &ChainQuery) -> Transform {
+    match chain.get(entity) {
+        Ok((_, Some(p), _)) => world_transform(p.parent(), chain).0,
+        _ => Transform::IDENTITY,
+    }
+}
+
+/// Why an entity with a parent can't be simulated yet, if it can't. `parent`: the
+/// composed transform of its parents.
 pub fn unsupported(
     is_body: bool,
-    has_collider: bool,
-    local: &Transform,
-    world: &Transform,
+    parent: &Transform,
     under_body: bool,
 ) -> Option<(&'static str, String)> {
-    if under_body && has_collider && !is_body {
+    if is_body && under_body {
         return Some((
             "ChildOf",
-            "a collider on a child of a RigidBody (a compound body) is not supported yet".into(),
+            "a body under another body is not supported (make them siblings)".into(),
         ));
     }
-    if is_body && local != world {
+    let s = parent.scale;
+    if is_body && !(s.x == s.y && s.y == s.z) {
         return Some((
             "ChildOf",
-            "a body under a parent that is not at the origin is not supported yet".into(),
+            format!("a body under a parent scaled unevenly ({s}) would shear"),
         ));
     }
     None

@@ -1,73 +1,55 @@
-//! One-shot impulses ([`ExternalImpulse`]): applied to `Velocity` at the start of the
-//! step that follows them, then zeroed. Runs after the fixed set is synced (an impulse
-//! wakes a sleeper there) and before the bodies are gathered. Only entities whose
-//! impulse changed are visited, so bodies without one cost nothing.
+//! One-shot impulses ([`ExternalImpulse`]): added to the solver body when prepare gathers
+//! it (so a compound body's summed mass and inertia take them) and zeroed there. The fixed-set sync before it wakes a sleeper that got one, so it is gathered
+//! in the same step. Only entities whose impulse changed are visited by the clear, so
+//! bodies without one cost nothing.
 
 use bevy::prelude::*;
 
-use super::{MassInput, mass_properties};
 use crate::body::*;
-use crate::collider::Collider;
-use crate::effects::LockRotation;
 use crate::limits;
-use crate::world::world_inv_inertia;
+use crate::world::{BodyState, SolverBody};
 
-/// The components an impulse needs.
-type ImpulseItem<'a> = (
-    Entity,
-    &'a mut ExternalImpulse,
-    &'a mut Velocity,
-    &'a RigidBody,
-    &'a Transform,
-    Option<&'a Mass>,
-    Option<&'a ColliderDensity>,
-    Option<&'a AngularInertia>,
-    Option<&'a Collider>,
-    Has<LockRotation>,
-);
-
-/// Applies and clears every pending [`ExternalImpulse`] of a dynamic body.
-pub fn apply_impulses(
-    mut bodies: Query<ImpulseItem, (Changed<ExternalImpulse>, Without<PhysicsRejected>)>,
+/// Adds `j` to a gathered dynamic body: Δv = J/m, Δω = I⁻¹·L (world inverse inertia as
+/// gathered). A non-finite impulse, or one that would take the body past the speed
+/// limits, is logged and dropped.
+pub fn apply_impulse(
+    entity: Entity,
+    j: &ExternalImpulse,
+    state: &mut BodyState,
+    body: &mut SolverBody,
 ) {
-    for (entity, mut impulse, mut vel, kind, tf, mass, density, inertia, collider, locked) in
-        &mut bodies
-    {
+    let v = body.v + j.impulse * body.inv_mass;
+    let w = body.w + body.inv_inertia * j.torque_impulse;
+    let fine = |x: Vec3, max: f32| x.is_finite() && x.abs().max_element() <= max;
+    if !(fine(v, limits::MAX_SPEED) && fine(w, limits::MAX_RATE)) {
+        error!(
+            "tumble: body {entity}: ExternalImpulse {:?} dropped (non-finite, or past the \
+             speed limits of ±{} m/s, ±{} rad/s)",
+            j,
+            limits::MAX_SPEED,
+            limits::MAX_RATE
+        );
+        return;
+    }
+    (body.v, body.w) = (v, w);
+    (state.v0, state.w0) = (v, w);
+}
+
+/// What is left of a changed [`ExternalImpulse`] after the gather (which zeroes what it
+/// applies): a sleeping body's is kept and the body woken, so the next gather applies
+/// it; a static, kinematic or rejected body's is dropped. Runs after the gather.
+pub fn clear_impulses(
+    mut commands: Commands,
+    mut impulses: Query<(Entity, &mut ExternalImpulse, Has<Sleeping>), Changed<ExternalImpulse>>,
+) {
+    for (entity, mut impulse, asleep) in &mut impulses {
         if impulse.is_zero() {
             continue;
         }
-        let j = *impulse;
-        // Zeroed without counting as a change: it is ours, not the user's.
-        *impulse.bypass_change_detection() = ExternalImpulse::default();
-        if *kind != RigidBody::Dynamic {
-            continue;
-        }
-        let given = MassInput {
-            mass,
-            density,
-            inertia,
-        };
-        let shape = collider.map(|c| c.shape.scaled(tf.scale));
-        let (m, inertia) = mass_properties(shape.as_ref(), &given);
-        let dv = j.impulse / m;
-        let dw = if locked {
-            Vec3::ZERO
+        if asleep {
+            commands.entity(entity).remove::<Sleeping>();
         } else {
-            world_inv_inertia(tf.rotation.normalize(), inertia.recip()) * j.torque_impulse
-        };
-        let (v, w) = (vel.linear + dv, vel.angular + dw);
-        let fine = |x: Vec3, max: f32| x.is_finite() && x.abs().max_element() <= max;
-        if !(fine(v, limits::MAX_SPEED) && fine(w, limits::MAX_RATE)) {
-            error!(
-                "tumble: body {entity}: ExternalImpulse {:?} dropped (non-finite, or past the \
-                 speed limits of ±{} m/s, ±{} rad/s)",
-                j,
-                limits::MAX_SPEED,
-                limits::MAX_RATE
-            );
-            continue;
+            *impulse.bypass_change_detection() = ExternalImpulse::default();
         }
-        vel.linear = v;
-        vel.angular = w;
     }
 }

@@ -3,6 +3,7 @@
 //! bodies) up to date from what changed. A body with invalid input is left out, tagged
 //! with [`PhysicsRejected`], and reported once in the log by entity and field.
 
+mod compound;
 mod fixed;
 mod hierarchy;
 mod impulses;
@@ -20,13 +21,16 @@ use crate::events::CollisionEventsEnabled;
 use crate::layers::{CollisionLayers, Sensor};
 use crate::settings::SolverSettings;
 use crate::world::{
-    BodyState, ColliderEntry, ContactFilter, ForceModel, KinematicPose, PhysicsWorld, STATIC,
-    SolverBody, world_inv_inertia,
+    BodyState, ColliderEntry, ContactFilter, ForceModel, KinematicPose, NO_PARENT, PhysicsWorld,
+    STATIC, SolverBody, world_inv_inertia,
 };
 
+pub use compound::BodyPart;
+use compound::{Part, PartItem, collect_parts, compound_mass, own_part, part_entry};
 pub use fixed::{InFixedSet, sync_fixed_set};
-use hierarchy::{ChainQuery, unsupported, world_transform};
-pub use impulses::apply_impulses;
+use hierarchy::{ChainQuery, parent_frame, unsupported, world_transform};
+use impulses::apply_impulse;
+pub use impulses::clear_impulses;
 pub use lifecycle::{
     PendingRechecks, SpawnCounter, number_collider, readmit_rejected, record_marker, record_removal,
 };
@@ -36,8 +40,9 @@ use validate::{
     validate_center_of_mass, validate_force, validate_mass_properties, validate_scalars,
 };
 
-/// The components prepare reads from each awake body.
+/// The components prepare reads from each awake body (and the impulse it consumes).
 #[derive(QueryData)]
+#[query_data(mutable)]
 pub struct BodyItem {
     entity: Entity,
     transform: &'static Transform,
@@ -51,6 +56,7 @@ pub struct BodyItem {
     restitution: Option<&'static Restitution>,
     friction: Option<&'static Friction>,
     force: Option<&'static ExternalForce>,
+    impulse: Option<&'static mut ExternalImpulse>,
     linear_damping: Option<&'static LinearDamping>,
     angular_damping: Option<&'static AngularDamping>,
     sleep_timer: Option<&'static SleepTimer>,
@@ -59,6 +65,7 @@ pub struct BodyItem {
     order: Option<&'static SpawnOrder>,
     filter: FilterItem,
     parent: Has<ChildOf>,
+    children: Option<&'static Children>,
 }
 
 /// What decides whether and how a collider touches others.
@@ -105,8 +112,10 @@ pub fn prepare_bodies(
     time: Res<Time<Fixed>>,
     effects: Res<Effects>,
     settings: Res<SolverSettings>,
-    query: Query<BodyItem, BodyQueryFilter>,
+    mut query: Query<BodyItem, BodyQueryFilter>,
     chain: ChainQuery,
+    part_items: Query<PartItem>,
+    mut parts: Local<Vec<Part>>,
 ) {
     let world = &mut *world;
     // The fixed step's length, also when a paused app single-steps.
@@ -115,6 +124,7 @@ pub fn prepare_bodies(
     world.bodies.clear();
     world.colliders.clear();
     world.wake.clear();
+    world.parent_frames.clear();
     // Filled by the collision stages only when collisions are on.
     world.pairs.clear();
     world.manifolds.clear();
@@ -128,19 +138,23 @@ pub fn prepare_bodies(
     // frame is reached over the frame's steps, so two steps a frame move evenly.
     let whole = time.overstep().as_nanos() / time.timestep().as_nanos().max(1);
     let span = world.dt * (1 + whole) as f32;
-    for item in &query {
+    for mut item in &mut query {
         let entity = item.entity;
         let kind = *item.kind;
-        let tf = if item.parent {
+        // Under a parent: simulated in the world, written back in the parent's frame.
+        let (tf, parent) = if item.parent {
             let (world_tf, under_body) = world_transform(entity, &chain);
-            let (body, collider) = (kind != RigidBody::Static, item.collider.is_some());
-            if let Some(e) = unsupported(body, collider, item.transform, &world_tf, under_body) {
+            let frame = parent_frame(entity, &chain);
+            let body = kind != RigidBody::Static;
+            if let Some(e) = unsupported(body, &frame, under_body) {
                 reject(&mut commands, entity, e);
                 continue;
             }
-            world_tf
+            let index = world.parent_frames.len() as u32;
+            world.parent_frames.push(frame);
+            (world_tf, index)
         } else {
-            *item.transform
+            (*item.transform, NO_PARENT)
         };
         if kind == RigidBody::Static {
             commands.entity(entity).insert(InFixedSet);
@@ -153,10 +167,42 @@ pub fn prepare_bodies(
                     Err(e) => reject(&mut commands, entity, e),
                 }
             }
+            // A static compound: its parts are static colliders it owns.
+            if let Some(children) = item.children {
+                parts.clear();
+                let density = item.density.map(|d| d.0);
+                collect_parts(children, tf.scale, density, &part_items, &mut parts);
+                let at = (tf.translation, tf.rotation.normalize());
+                for p in parts.iter() {
+                    let frame = (Vec3::ZERO, Quat::IDENTITY);
+                    world
+                        .fixed
+                        .insert(part_entry(p, (entity, STATIC), at, frame));
+                }
+            }
             continue;
         }
         let vel = item.velocity.copied().unwrap_or(Velocity::ZERO);
         let shape = item.collider.map(|c| scaled_shape(entity, c, &tf));
+        // Colliders on its children make it a compound body.
+        parts.clear();
+        if let Some(children) = item.children {
+            let density = item.density.map(|d| d.0);
+            collect_parts(children, tf.scale, density, &part_items, &mut parts);
+            if let (Some(shape), false) = (shape, parts.is_empty()) {
+                let key = order_key(entity, item.order);
+                let material = (
+                    item.friction.map_or(DEFAULT_FRICTION, |f| f.0),
+                    item.restitution.map_or(0.0, |r| r.0),
+                    item.filter.get(),
+                );
+                parts.insert(0, own_part(entity, key, shape, item.density, material));
+            }
+        }
+        if let Some(e) = parts.iter().find_map(|p| validate_part(&tf, kind, p).err()) {
+            reject(&mut commands, entity, e);
+            continue;
+        }
         let damping = Vec2::new(
             item.linear_damping.map_or(0.0, |d| d.0),
             item.angular_damping.map_or(0.0, |d| d.0),
@@ -188,17 +234,35 @@ pub fn prepare_bodies(
             }
         }
         let index = world.bodies.len() as u32;
-        // The solver works at the centre of mass; the collider sits at the origin.
-        let com = match (kind, item.center_of_mass) {
-            (RigidBody::Dynamic, Some(c)) => c.0,
-            _ => Vec3::ZERO,
+        // The solver works at the centre of mass, in the principal frame; a simple
+        // body's collider sits at its origin.
+        let dynamic = kind == RigidBody::Dynamic;
+        let compound = (!parts.is_empty())
+            .then(|| compound_mass(&parts, item.mass, item.angular_inertia, item.center_of_mass));
+        let (com, frame) = match (dynamic, compound, item.center_of_mass) {
+            (true, Some(c), _) => (c.com, c.frame),
+            (true, None, Some(c)) => (c.0, Quat::IDENTITY),
+            _ => (Vec3::ZERO, Quat::IDENTITY),
         };
         let input = BodyInput {
             entity,
             kind,
-            pos: pos + rot * com,
+            pos: if com == Vec3::ZERO {
+                pos
+            } else {
+                pos + rot * com
+            },
             com,
-            rot,
+            frame,
+            props: compound.map(|c| (c.mass, c.moments)),
+            round: compound.is_none()
+                && matches!(shape, None | Some(Shape::Sphere { .. }))
+                && com == Vec3::ZERO,
+            rot: if frame == Quat::IDENTITY {
+                rot
+            } else {
+                (rot * frame).normalize()
+            },
             vel,
             mass: MassInput {
                 mass: item.mass,
@@ -211,7 +275,12 @@ pub fn prepare_bodies(
             gravity_scale: item.gravity_scale.map_or(1.0, |g| g.0),
             rotation_locked: item.lock_rotation || !effects.rotation,
         };
-        let (mut state, solver) = gather_body(input, &settings);
+        let (mut state, mut solver) = gather_body(input, &settings);
+        if let Some(j) = item.impulse.as_mut().filter(|j| dynamic && !j.is_zero()) {
+            apply_impulse(entity, j, &mut state, &mut solver);
+            // Applied once: zeroed without counting as the user's change.
+            *j.bypass_change_detection() = ExternalImpulse::default();
+        }
         if kind == RigidBody::Dynamic {
             let mass = solver.inv_mass.recip();
             let given = (item.mass.is_some(), item.angular_inertia.is_some());
@@ -221,18 +290,29 @@ pub fn prepare_bodies(
             }
         }
         state.sleep_time = item.sleep_timer.map_or(0.0, |t| t.0);
+        state.parent = parent;
         state.driven = driven;
         state.target = target;
         world.bodies.push(state);
         world.solver_bodies.push(solver);
-        if let Some(shape) = shape {
+        if !parts.is_empty() {
+            for p in parts.iter() {
+                if !p.marked {
+                    commands.entity(p.entity).insert(BodyPart);
+                }
+                let entry = part_entry(p, (entity, index), (pos, rot), (com, frame));
+                world.colliders.push(entry);
+            }
+        } else if let Some(shape) = shape {
             world.colliders.push(ColliderEntry {
                 entity,
+                owner: entity,
                 key: order_key(entity, item.order),
                 body: index,
                 asleep: false,
                 shape,
                 offset: -com,
+                local_rot: Quat::IDENTITY,
                 pos,
                 rot,
                 friction: item.friction.map_or(DEFAULT_FRICTION, |f| f.0),
@@ -332,6 +412,12 @@ pub fn scaled_shape(entity: Entity, collider: &Collider, tf: &Transform) -> Shap
     collider.shape.scaled(tf.scale)
 }
 
+/// A compound body's part: its shape's sizes, checked as the body's own would be.
+fn validate_part(tf: &Transform, kind: RigidBody, p: &Part) -> Result<(), (&'static str, String)> {
+    validate(tf, &Velocity::ZERO, kind, None, Some(&p.shape))
+        .map_err(|(field, why)| (field, format!("part {}: {why}", p.entity)))
+}
+
 /// Leaves a body out of the simulation, tagged with [`PhysicsRejected`] and logged once.
 fn reject(commands: &mut Commands, entity: Entity, (field, reason): (&'static str, String)) {
     error!("tumble: body {entity} left out of the simulation: {field} is invalid ({reason})");
@@ -351,11 +437,13 @@ fn fixed_entry(
 ) -> impl Fn(bool) -> ColliderEntry {
     let entry = ColliderEntry {
         entity,
+        owner: entity,
         key,
         body: STATIC,
         asleep: false,
         shape: scaled_shape(entity, collider, tf),
         offset: Vec3::ZERO,
+        local_rot: Quat::IDENTITY,
         pos: tf.translation,
         rot: tf.rotation.normalize(),
         friction: friction.map_or(DEFAULT_FRICTION, |f| f.0),
@@ -374,6 +462,12 @@ struct BodyInput<'a> {
     /// Where the centre of mass is, and where it sits in the body's frame.
     pos: Vec3,
     com: Vec3,
+    /// The principal frame in the body's frame; `rot` is the body's rotation times it.
+    frame: Quat,
+    /// A compound body's mass (kg) and principal moments (kg·m²), summed from its parts.
+    props: Option<(f32, Vec3)>,
+    /// A sphere turning about its centre: its contact point stays under it.
+    round: bool,
     rot: Quat,
     vel: Velocity,
     mass: MassInput<'a>,
@@ -410,7 +504,9 @@ pub struct MassInput<'a> {
 /// here; gravity, drag, wind and the global push are the force stage's effects.
 fn gather_body(b: BodyInput, settings: &SolverSettings) -> (BodyState, SolverBody) {
     let dynamic = b.kind == RigidBody::Dynamic;
-    let (m, inertia) = mass_properties(b.shape.as_ref(), &b.mass);
+    let (m, inertia) = b
+        .props
+        .unwrap_or_else(|| mass_properties(b.shape.as_ref(), &b.mass));
     let inv_mass = if dynamic { 1.0 / m } else { 0.0 };
     let inv_inertia = if dynamic && !b.rotation_locked {
         inertia.recip()
@@ -437,6 +533,7 @@ fn gather_body(b: BodyInput, settings: &SolverSettings) -> (BodyState, SolverBod
         x0: b.pos,
         q0: b.rot,
         com: b.com,
+        frame: b.frame,
         v0: v,
         w0: w,
         inertia,
@@ -449,12 +546,12 @@ fn gather_body(b: BodyInput, settings: &SolverSettings) -> (BodyState, SolverBod
         },
         gravity_scale: b.gravity_scale,
         rotation_locked: b.rotation_locked && dynamic,
-        // A sphere turning about its centre: its contact point stays under it.
-        round: matches!(b.shape, None | Some(Shape::Sphere { .. })) && b.com == Vec3::ZERO,
+        round: b.round,
         in_contact: false,
         sleep_time: 0.0,
         driven: false,
         target: None,
+        parent: NO_PARENT,
     };
     let solver = SolverBody {
         v,

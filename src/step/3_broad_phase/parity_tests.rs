@@ -41,11 +41,13 @@ fn scene(seed: u64) -> Vec<ColliderEntry> {
             };
             ColliderEntry {
                 entity: Entity::PLACEHOLDER,
+                owner: Entity::PLACEHOLDER,
                 key: i as u64,
                 body,
                 asleep: false,
                 shape,
                 offset: Vec3::ZERO,
+                local_rot: Quat::IDENTITY,
                 pos,
                 rot,
                 friction: 0.5,
@@ -93,11 +95,11 @@ proptest! {
         // Insert all 500, then move every third (re-insert at a new place) and remove
         // every fifth: swap-removal must keep every other entry findable.
         for (k, c) in colliders.iter().enumerate() {
-            set.insert(ColliderEntry { entity: entity(k), ..*c });
+            set.insert(ColliderEntry { entity: entity(k), owner: entity(k), ..*c });
         }
         for (k, c) in colliders.iter().enumerate().step_by(3) {
             let pos = c.pos + Vec3::new(5.0, -3.0, 2.0);
-            set.insert(ColliderEntry { entity: entity(k), pos, ..*c });
+            set.insert(ColliderEntry { entity: entity(k), owner: entity(k), pos, ..*c });
         }
         for k in (0..colliders.len()).step_by(5) {
             prop_assert!(set.remove(entity(k)));

@@ -53,7 +53,7 @@ pub fn collide_pairs(
                 let reach = dt * closing_speed(world, k);
                 let margin = settings.margin_for(k.shape.pair_thickness(&s.shape));
                 if collide(k, ik, s, is, margin + reach).is_some() {
-                    world.wake.push(s.entity);
+                    world.wake.push(s.owner);
                 }
             }
             continue;
@@ -61,9 +61,9 @@ pub fn collide_pairs(
         // Something awake reaches a sleeping body: it wakes next step; this step it
         // stands still like a static one.
         let wake = if a.asleep {
-            Some(a.entity)
+            Some(a.owner)
         } else if b.asleep {
-            Some(b.entity)
+            Some(b.owner)
         } else {
             None
         };

@@ -160,6 +160,7 @@ pub fn prepare_constraints(
                     spin[1] && !matches!(cb.shape, Shape::Sphere { .. }),
                 ],
                 arm,
+                rolls: arm != [Vec3::ZERO; 2],
             },
             spin,
             refresh: (spin[0] && (anisotropic(ca.body) || arm[0] != Vec3::ZERO))
@@ -216,7 +217,7 @@ pub fn refresh_rows(bodies: &[SolverBody], constraints: &mut [ContactConstraint]
     for c in constraints.iter_mut().filter(|c| c.refresh) {
         let (a, b) = (body(bodies, c.a), body(bodies, c.b));
         let linear = a.inv_mass + b.inv_mass;
-        let (anchoring, rolls) = (c.anchoring, c.anchoring.arm != [Vec3::ZERO; 2]);
+        let (anchoring, rolls) = (c.anchoring, c.anchoring.rolls);
         for p in c.points[..c.len].iter_mut() {
             if rolls {
                 // A sphere rolling about an off-centre centre of mass: its contact point

@@ -54,7 +54,11 @@ pub fn sweep_against_fixed(
             let rot = (Quat::IDENTITY.slerp(dq, t) * b.q0).normalize();
             ColliderEntry {
                 pos: b.x0 + dp * t + rot * c.offset,
-                rot,
+                rot: if c.local_rot == Quat::IDENTITY {
+                    rot
+                } else {
+                    (rot * c.local_rot).normalize()
+                },
                 ..c
             }
         };
