@@ -5,8 +5,10 @@
 
 mod compound;
 mod fixed;
+mod gather;
 mod hierarchy;
 mod impulses;
+mod kinematic;
 mod lifecycle;
 mod settings;
 mod validate;
@@ -20,17 +22,17 @@ use crate::effects::{Effects, GravityScale, LockRotation};
 use crate::events::CollisionEventsEnabled;
 use crate::layers::{CollisionLayers, Sensor};
 use crate::settings::SolverSettings;
-use crate::world::{
-    BodyState, ColliderEntry, ContactFilter, ForceModel, KinematicPose, NO_PARENT, PhysicsWorld,
-    STATIC, SolverBody, world_inv_inertia,
-};
+use crate::world::{ColliderEntry, ContactFilter, NO_PARENT, PhysicsWorld, STATIC};
 
 pub use compound::BodyPart;
 use compound::{Part, PartItem, collect_parts, compound_mass, own_part, part_entry};
 pub use fixed::{InFixedSet, sync_fixed_set};
+use gather::MassInput;
+use gather::{BodyInput, gather_body};
 use hierarchy::{ChainQuery, parent_frame, unsupported, world_transform};
 use impulses::apply_impulse;
 pub use impulses::clear_impulses;
+use kinematic::{Drive, drive_kinematic};
 pub use lifecycle::{
     PendingRechecks, SpawnCounter, number_collider, readmit_rejected, record_marker, record_removal,
 };
@@ -330,51 +332,6 @@ pub fn prepare_bodies(
     world.kinematic_poses = last_poses;
 }
 
-/// How a kinematic body moves this step.
-enum Drive {
-    /// Toward the user's Transform (the pose given) from last step's pose, at this
-    /// velocity.
-    ToTarget(Velocity, (Vec3, Quat)),
-    /// It was moved by its Transform last step and not since: it stops there.
-    Stopped,
-    /// Moved by its `Velocity`, as usual.
-    ByVelocity,
-}
-
-/// Reads a kinematic body's Transform against the pose tumble wrote last step (`last`).
-/// A change is the user's: the body travels there over `span` seconds (the steps left in
-/// this frame), with the velocity that implies, so what stands on it is carried along.
-/// Set it in `FixedUpdate` (before [`PhysicsSystems::Prepare`](crate::PhysicsSystems))
-/// for motion as smooth as the game's: set in `Update` at a render rate above the step
-/// rate, each step takes the moves of two or three frames, and the velocity follows that
-/// beat (±25 % at 144 Hz).
-/// No change while a frame's target is not reached yet: it carries on toward it. A move
-/// faster than `max_speed` is a teleport: it goes there at once, with its own `Velocity`.
-fn drive_kinematic(last: &KinematicPose, tf: &Transform, span: f32, max_speed: f32) -> Drive {
-    let unchanged = last.pos == tf.translation && last.rot == tf.rotation;
-    let (goal_pos, goal_rot) = match (unchanged, last.target) {
-        (false, _) => (tf.translation, tf.rotation.normalize()),
-        (true, Some(target)) => target,
-        (true, None) if last.driven => return Drive::Stopped,
-        (true, None) => return Drive::ByVelocity,
-    };
-    let linear = (goal_pos - last.pos) / span;
-    if !(linear.length() <= max_speed) || span <= 0.0 {
-        return Drive::ByVelocity;
-    }
-    let mut turn = goal_rot * last.rot.inverse();
-    if turn.w < 0.0 {
-        turn = -turn;
-    }
-    let (axis, angle) = turn.to_axis_angle();
-    let angular = if angle.is_finite() && axis.is_finite() {
-        axis * (angle / span)
-    } else {
-        Vec3::ZERO
-    };
-    Drive::ToTarget(Velocity { linear, angular }, (goal_pos, goal_rot))
-}
-
 /// A collider's place in the step's canonical order: its [`SpawnOrder`] (every collider
 /// gets one when it appears; the entity's bits stand in until then).
 fn order_key(entity: Entity, order: Option<&SpawnOrder>) -> u64 {
@@ -453,113 +410,4 @@ fn fixed_entry(
         aabb_max: Vec3::ZERO,
     };
     move |asleep| ColliderEntry { asleep, ..entry }
-}
-
-/// The per-body inputs of one dynamic or kinematic body.
-struct BodyInput<'a> {
-    entity: Entity,
-    kind: RigidBody,
-    /// Where the centre of mass is, and where it sits in the body's frame.
-    pos: Vec3,
-    com: Vec3,
-    /// The principal frame in the body's frame; `rot` is the body's rotation times it.
-    frame: Quat,
-    /// A compound body's mass (kg) and principal moments (kg·m²), summed from its parts.
-    props: Option<(f32, Vec3)>,
-    /// A sphere turning about its centre: its contact point stays under it.
-    round: bool,
-    rot: Quat,
-    vel: Velocity,
-    mass: MassInput<'a>,
-    shape: Option<Shape>,
-    force: Option<&'a ExternalForce>,
-    damping: Vec2,
-    gravity_scale: f32,
-    rotation_locked: bool,
-}
-
-/// A body's mass (kg) and principal moments of inertia (kg·m²): its [`Mass`], or its
-/// collider's volume at its [`ColliderDensity`] (default [`DEFAULT_DENSITY`]); its
-/// [`AngularInertia`], or that of the solid shape. A body without a collider rotates like
-/// a solid ball of 0.5 m radius.
-pub fn mass_properties(shape: Option<&Shape>, mass: &MassInput) -> (f32, Vec3) {
-    let shape = shape.copied().unwrap_or(Shape::Sphere { radius: 0.5 });
-    let density = mass.density.map_or(DEFAULT_DENSITY, |d| d.0);
-    let m = mass.mass.map_or(shape.volume() * density, |m| m.0);
-    let inertia = mass
-        .inertia
-        .map_or_else(|| shape.principal_inertia(m), |i| i.0);
-    (m, inertia)
-}
-
-/// The components that set a body's mass properties.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct MassInput<'a> {
-    pub mass: Option<&'a Mass>,
-    pub density: Option<&'a ColliderDensity>,
-    pub inertia: Option<&'a AngularInertia>,
-}
-
-/// Builds a body's solver state. Only its own `ExternalForce` goes into the force model
-/// here; gravity, drag, wind and the global push are the force stage's effects.
-fn gather_body(b: BodyInput, settings: &SolverSettings) -> (BodyState, SolverBody) {
-    let dynamic = b.kind == RigidBody::Dynamic;
-    let (m, inertia) = b
-        .props
-        .unwrap_or_else(|| mass_properties(b.shape.as_ref(), &b.mass));
-    let inv_mass = if dynamic { 1.0 / m } else { 0.0 };
-    let inv_inertia = if dynamic && !b.rotation_locked {
-        inertia.recip()
-    } else {
-        Vec3::ZERO
-    };
-    let forces = match (dynamic, b.force) {
-        (true, Some(f)) => ForceModel {
-            accel: f.force * inv_mass,
-            torque: f.torque,
-            ..default()
-        },
-        _ => ForceModel::default(),
-    };
-    let v = b.vel.linear.clamp_length_max(settings.max_linear_speed);
-    let w = if b.rotation_locked {
-        Vec3::ZERO
-    } else {
-        b.vel.angular
-    };
-    let state = BodyState {
-        entity: b.entity,
-        kind: b.kind,
-        x0: b.pos,
-        q0: b.rot,
-        com: b.com,
-        frame: b.frame,
-        v0: v,
-        w0: w,
-        inertia,
-        inv_inertia,
-        forces,
-        damping: if dynamic {
-            b.damping.max(Vec2::ZERO)
-        } else {
-            Vec2::ZERO
-        },
-        gravity_scale: b.gravity_scale,
-        rotation_locked: b.rotation_locked && dynamic,
-        round: b.round,
-        in_contact: false,
-        sleep_time: 0.0,
-        driven: false,
-        target: None,
-        parent: NO_PARENT,
-    };
-    let solver = SolverBody {
-        v,
-        w,
-        dp: Vec3::ZERO,
-        dq: Quat::IDENTITY,
-        inv_mass,
-        inv_inertia: world_inv_inertia(b.rot, inv_inertia),
-    };
-    (state, solver)
 }

@@ -1,0 +1,118 @@
+//! One body's solver state from its components: mass properties, forces, the hot and
+//! cold per-body records.
+
+use bevy::prelude::*;
+
+use crate::body::*;
+use crate::collider::Shape;
+use crate::settings::SolverSettings;
+use crate::world::{BodyState, ForceModel, NO_PARENT, SolverBody, world_inv_inertia};
+
+/// The per-body inputs of one dynamic or kinematic body.
+pub(super) struct BodyInput<'a> {
+    pub entity: Entity,
+    pub kind: RigidBody,
+    /// Where the centre of mass is, and where it sits in the body's frame.
+    pub pos: Vec3,
+    pub com: Vec3,
+    /// The principal frame in the body's frame; `rot` is the body's rotation times it.
+    pub frame: Quat,
+    /// A compound body's mass (kg) and principal moments (kg·m²), summed from its parts.
+    pub props: Option<(f32, Vec3)>,
+    /// A sphere turning about its centre: its contact point stays under it.
+    pub round: bool,
+    pub rot: Quat,
+    pub vel: Velocity,
+    pub mass: MassInput<'a>,
+    pub shape: Option<Shape>,
+    pub force: Option<&'a ExternalForce>,
+    pub damping: Vec2,
+    pub gravity_scale: f32,
+    pub rotation_locked: bool,
+}
+
+/// A body's mass (kg) and principal moments of inertia (kg·m²): its [`Mass`], or its
+/// collider's volume at its [`ColliderDensity`] (default [`DEFAULT_DENSITY`]); its
+/// [`AngularInertia`], or that of the solid shape. A body without a collider rotates like
+/// a solid ball of 0.5 m radius.
+pub fn mass_properties(shape: Option<&Shape>, mass: &MassInput) -> (f32, Vec3) {
+    let shape = shape.copied().unwrap_or(Shape::Sphere { radius: 0.5 });
+    let density = mass.density.map_or(DEFAULT_DENSITY, |d| d.0);
+    let m = mass.mass.map_or(shape.volume() * density, |m| m.0);
+    let inertia = mass
+        .inertia
+        .map_or_else(|| shape.principal_inertia(m), |i| i.0);
+    (m, inertia)
+}
+
+/// The components that set a body's mass properties.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct MassInput<'a> {
+    pub mass: Option<&'a Mass>,
+    pub density: Option<&'a ColliderDensity>,
+    pub inertia: Option<&'a AngularInertia>,
+}
+
+/// Builds a body's solver state. Only its own `ExternalForce` goes into the force model
+/// here; gravity, drag, wind and the global push are the force stage's effects.
+pub(super) fn gather_body(b: BodyInput, settings: &SolverSettings) -> (BodyState, SolverBody) {
+    let dynamic = b.kind == RigidBody::Dynamic;
+    let (m, inertia) = b
+        .props
+        .unwrap_or_else(|| mass_properties(b.shape.as_ref(), &b.mass));
+    let inv_mass = if dynamic { 1.0 / m } else { 0.0 };
+    let inv_inertia = if dynamic && !b.rotation_locked {
+        inertia.recip()
+    } else {
+        Vec3::ZERO
+    };
+    let forces = match (dynamic, b.force) {
+        (true, Some(f)) => ForceModel {
+            accel: f.force * inv_mass,
+            torque: f.torque,
+            ..default()
+        },
+        _ => ForceModel::default(),
+    };
+    let v = b.vel.linear.clamp_length_max(settings.max_linear_speed);
+    let w = if b.rotation_locked {
+        Vec3::ZERO
+    } else {
+        b.vel.angular
+    };
+    let state = BodyState {
+        entity: b.entity,
+        kind: b.kind,
+        x0: b.pos,
+        q0: b.rot,
+        com: b.com,
+        frame: b.frame,
+        v0: v,
+        w0: w,
+        inertia,
+        inv_inertia,
+        forces,
+        damping: if dynamic {
+            b.damping.max(Vec2::ZERO)
+        } else {
+            Vec2::ZERO
+        },
+        gravity_scale: b.gravity_scale,
+        rotation_locked: b.rotation_locked && dynamic,
+        round: b.round,
+        in_contact: false,
+        sleep_time: 0.0,
+        driven: false,
+        target: None,
+        parent: NO_PARENT,
+    };
+    let solver = SolverBody {
+        v,
+        w,
+        dp: Vec3::ZERO,
+        dq: Quat::IDENTITY,
+        inv_mass,
+        inv_inertia: world_inv_inertia(b.rot, inv_inertia),
+    };
+    (state, solver)
+}
