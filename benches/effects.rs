@@ -9,6 +9,7 @@ use std::time::Instant;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use tumble::prelude::*;
+use tumble::settings::GlobalForce;
 use tumble::scene::SceneDesc;
 use tumble::timings::{STAGES, StepTimings};
 

@@ -20,6 +20,7 @@ pub mod diagnostics;
 pub mod effects;
 pub mod events;
 mod geometry;
+#[cfg(feature = "demo")]
 pub mod interaction;
 pub mod interpolation;
 pub mod layers;
@@ -60,7 +61,7 @@ pub mod prelude {
     };
     pub use crate::layers::{CollisionLayers, LayerMask, PhysicsLayer, Sensor};
     pub use crate::plugin::{PhysicsSystems, TumblePlugin};
-    pub use crate::settings::{GlobalForce, Gravity, Integrator, SleepSettings, SolverSettings};
+    pub use crate::settings::{Gravity, Integrator, SleepSettings, SolverSettings};
     pub use crate::timings::StepTimings;
     pub use crate::world::PhysicsWorld;
 }

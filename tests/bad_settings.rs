@@ -11,6 +11,7 @@ use std::time::Duration;
 use bevy::prelude::*;
 use common::*;
 use tumble::prelude::*;
+use tumble::settings::GlobalForce;
 use tumble::scene::{SceneDesc, SceneError};
 
 /// A floor, a ball resting on it and a ball in free fall; 30 steps; then `bad` before

@@ -7,6 +7,7 @@ use bevy::prelude::*;
 use common::*;
 use tumble::interaction::*;
 use tumble::prelude::*;
+use tumble::settings::GlobalForce;
 use tumble::scene::{SceneDesc, SceneEntity};
 
 fn scene_entities(app: &mut App) -> Vec<Entity> {

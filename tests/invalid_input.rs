@@ -12,6 +12,7 @@ use bevy::prelude::*;
 use common::*;
 use tumble::limits;
 use tumble::prelude::*;
+use tumble::settings::GlobalForce;
 use tumble::scene::SceneDesc;
 
 const VALUES: [f32; 7] = [

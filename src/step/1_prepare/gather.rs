@@ -35,6 +35,7 @@ pub(super) struct BodyInput<'a> {
 /// collider's volume at its [`ColliderDensity`] (default [`DEFAULT_DENSITY`]); its
 /// [`AngularInertia`], or that of the solid shape. A body without a collider rotates like
 /// a solid ball of 0.5 m radius.
+#[inline]
 pub fn mass_properties(shape: Option<&Shape>, mass: &MassInput) -> (f32, Vec3) {
     let shape = shape.copied().unwrap_or(Shape::Sphere { radius: 0.5 });
     let density = mass.density.map_or(DEFAULT_DENSITY, |d| d.0);
@@ -55,6 +56,7 @@ pub struct MassInput<'a> {
 
 /// Builds a body's solver state. Only its own `ExternalForce` goes into the force model
 /// here; gravity, drag, wind and the global push are the force stage's effects.
+#[inline]
 pub(super) fn gather_body(b: BodyInput, settings: &SolverSettings) -> (BodyState, SolverBody) {
     let dynamic = b.kind == RigidBody::Dynamic;
     let (m, inertia) = b

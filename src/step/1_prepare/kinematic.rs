@@ -26,6 +26,7 @@ pub(super) enum Drive {
 /// beat (±25 % at 144 Hz).
 /// No change while a frame's target is not reached yet: it carries on toward it. A move
 /// faster than `max_speed` is a teleport: it goes there at once, with its own `Velocity`.
+#[inline]
 pub(super) fn drive_kinematic(
     last: &KinematicPose,
     tf: &Transform,

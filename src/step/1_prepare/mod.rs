@@ -334,6 +334,7 @@ pub fn prepare_bodies(
 
 /// A collider's place in the step's canonical order: its [`SpawnOrder`] (every collider
 /// gets one when it appears; the entity's bits stand in until then).
+#[inline]
 fn order_key(entity: Entity, order: Option<&SpawnOrder>) -> u64 {
     order.map_or(u64::MAX - entity.to_bits(), |o| o.0)
 }
@@ -358,6 +359,7 @@ fn validate_static(
 
 /// A collider's shape under its entity's `Transform::scale`. What cannot scale exactly
 /// (a sphere stretched unevenly) takes its largest axis, with a warning.
+#[inline]
 pub fn scaled_shape(entity: Entity, collider: &Collider, tf: &Transform) -> Shape {
     if !collider.shape.scales_exactly(tf.scale) {
         warn_once!(
@@ -370,6 +372,7 @@ pub fn scaled_shape(entity: Entity, collider: &Collider, tf: &Transform) -> Shap
 }
 
 /// A compound body's part: its shape's sizes, checked as the body's own would be.
+#[inline]
 fn validate_part(tf: &Transform, kind: RigidBody, p: &Part) -> Result<(), (&'static str, String)> {
     validate(tf, &Velocity::ZERO, kind, None, Some(&p.shape))
         .map_err(|(field, why)| (field, format!("part {}: {why}", p.entity)))

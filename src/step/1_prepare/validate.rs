@@ -9,6 +9,7 @@ use crate::effects::GravityScale;
 use crate::limits;
 
 /// Checks one body's input. Returns the offending field and why.
+#[inline]
 pub fn validate(
     tf: &Transform,
     vel: &Velocity,
@@ -58,6 +59,7 @@ pub fn validate(
     Ok(())
 }
 
+#[inline]
 pub(super) fn validate_force(force: Option<&ExternalForce>) -> Result<(), (&'static str, String)> {
     let Some(f) = force else { return Ok(()) };
     let max = limits::MAX_FORCE;
@@ -77,6 +79,7 @@ pub(super) fn validate_force(force: Option<&ExternalForce>) -> Result<(), (&'sta
 
 /// A body's material and per-body scalars: friction and gravity scale finite, restitution
 /// within 0..=1, damping finite and ≥ 0.
+#[inline]
 pub(super) fn validate_scalars(
     friction: Option<&Friction>,
     restitution: Option<&Restitution>,
@@ -104,6 +107,7 @@ pub(super) fn validate_scalars(
 /// mass (a 1e-12 m sphere without `Mass`) is refused here rather than handed to the
 /// solver as an infinite inverse mass.
 /// A [`CenterOfMass`] is finite and within [`limits::MAX_SIZE`] of the origin.
+#[inline]
 pub(super) fn validate_center_of_mass(
     com: Option<&CenterOfMass>,
 ) -> Result<(), (&'static str, String)> {
@@ -116,6 +120,7 @@ pub(super) fn validate_center_of_mass(
     }
 }
 
+#[inline]
 pub(super) fn validate_mass_properties(
     mass: f32,
     inertia: Vec3,
