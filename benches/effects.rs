@@ -9,8 +9,8 @@ use std::time::Instant;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use tumble::prelude::*;
-use tumble::settings::GlobalForce;
 use tumble::scene::SceneDesc;
+use tumble::settings::GlobalForce;
 use tumble::timings::{STAGES, StepTimings};
 
 const ROUNDS: usize = 9;

@@ -155,6 +155,7 @@ impl Shape {
 
     /// The shape's smallest dimension, m: a sphere's diameter, a box's thinnest side; a
     /// plane has none (∞).
+    #[inline]
     pub fn thickness(&self) -> f32 {
         match *self {
             Shape::Sphere { radius } => 2.0 * radius,
@@ -165,6 +166,7 @@ impl Shape {
 
     /// The thinner of two shapes' thicknesses, m: what sets a pair's allowed sag and
     /// its speculative margin.
+    #[inline]
     pub fn pair_thickness(&self, other: &Shape) -> f32 {
         self.thickness().min(other.thickness())
     }

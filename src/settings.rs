@@ -110,6 +110,7 @@ impl SolverSettings {
     /// sphere's diameter, a box's thinnest side): the setting, or half the thickness
     /// when that is less. Everything measured against the margin (the sweep's trigger,
     /// the touching slop of collision events) scales with it.
+    #[inline]
     pub fn margin_for(&self, thickness: f32) -> f32 {
         self.speculative_margin.min(MARGIN_OF_THICKNESS * thickness)
     }

@@ -11,8 +11,8 @@ use std::time::Duration;
 use bevy::prelude::*;
 use common::*;
 use tumble::prelude::*;
-use tumble::settings::GlobalForce;
 use tumble::scene::{SceneDesc, SceneError};
+use tumble::settings::GlobalForce;
 
 /// A floor, a ball resting on it and a ball in free fall; 30 steps; then `bad` before
 /// step 31, `good` after step 32; 30 more steps. Returns the final snapshot.

@@ -7,8 +7,8 @@ use bevy::prelude::*;
 use common::*;
 use tumble::interaction::*;
 use tumble::prelude::*;
-use tumble::settings::GlobalForce;
 use tumble::scene::{SceneDesc, SceneEntity};
+use tumble::settings::GlobalForce;
 
 fn scene_entities(app: &mut App) -> Vec<Entity> {
     app.world_mut()

@@ -12,8 +12,8 @@ use bevy::prelude::*;
 use common::*;
 use tumble::limits;
 use tumble::prelude::*;
-use tumble::settings::GlobalForce;
 use tumble::scene::SceneDesc;
+use tumble::settings::GlobalForce;
 
 const VALUES: [f32; 7] = [
     f32::NAN,

@@ -16,6 +16,7 @@ pub struct BoxFrame {
 }
 
 impl BoxFrame {
+    #[inline]
     pub fn new(p: &Posed, half: Vec3) -> Self {
         Self {
             pos: p.pos,
@@ -25,6 +26,7 @@ impl BoxFrame {
     }
 
     /// Half the box's extent along a unit axis.
+    #[inline]
     pub fn radius_along(&self, axis: Vec3) -> f32 {
         (0..3)
             .map(|k| self.axes.col(k).dot(axis).abs() * self.half[k])
@@ -33,6 +35,7 @@ impl BoxFrame {
 }
 
 /// The face of `b` whose outward normal points most against `n`.
+#[inline]
 pub fn most_anti_parallel_face(b: &BoxFrame, n: Vec3) -> usize {
     let dots = [0, 1, 2].map(|k| b.axes.col(k).dot(n));
     let k = (0..3)
@@ -44,6 +47,7 @@ pub fn most_anti_parallel_face(b: &BoxFrame, n: Vec3) -> usize {
 
 /// Keeps the polygon's vertices within `margin` of the plane n·x = plane (measured along
 /// n), reduces them to four, and adds them midway between the vertex and the plane.
+#[inline]
 pub fn push_face_points(
     poly: &Polygon,
     n: Vec3,

@@ -133,6 +133,7 @@ impl FixedSet {
 
     /// Calls `found` with the index of every entry whose bounds, fattened by `margin`,
     /// overlap [lo, hi]. Call [`update_search`](Self::update_search) after changes first.
+    #[inline]
     pub fn overlapping(&self, lo: Vec3, hi: Vec3, margin: f32, mut found: impl FnMut(u32)) {
         debug_assert!(!self.dirty, "FixedSet searched before update_search");
         let (lo, hi) = (lo - Vec3::splat(margin), hi + Vec3::splat(margin));

@@ -157,6 +157,7 @@ impl Default for ContactFilter {
 
 impl ColliderEntry {
     /// The body this collider belongs to, or `None` for a static collider.
+    #[inline]
     pub fn body_entity(&self) -> Option<Entity> {
         (self.body != STATIC || self.asleep).then_some(self.owner)
     }
@@ -304,6 +305,7 @@ impl PhysicsWorld {
 
     /// The current world pose of a collider during the step: its body's pose carried to
     /// the shape's centre, or its own for a static one.
+    #[inline]
     pub(crate) fn collider_pose(&self, c: &ColliderEntry) -> (Vec3, Quat) {
         if c.body == STATIC {
             return (c.pos, c.rot);
@@ -317,6 +319,7 @@ impl PhysicsWorld {
     }
 
     /// The current world pose of a body's centre of mass during the step.
+    #[inline]
     pub(crate) fn body_pose(&self, i: usize) -> (Vec3, Quat) {
         let (b, s) = (&self.bodies[i], &self.solver_bodies[i]);
         (b.x0 + s.dp, (s.dq * b.q0).normalize())
