@@ -39,17 +39,18 @@ pub fn writeback_bodies(
             continue;
         }
         // The solver's pose is the principal frame's at the centre of mass.
-        let rot = if body.frame == Quat::IDENTITY {
+        let f = world.body_frames[i];
+        let rot = if f.frame == Quat::IDENTITY {
             rot
         } else {
-            (rot * body.frame.inverse()).normalize()
+            (rot * f.frame.inverse()).normalize()
         };
-        let origin = if body.com == Vec3::ZERO {
+        let origin = if f.com == Vec3::ZERO {
             pos
         } else {
-            pos - rot * body.com
+            pos - rot * f.com
         };
-        (tf.translation, tf.rotation) = match world.parent_frames.get(body.parent as usize) {
+        (tf.translation, tf.rotation) = match world.parent_frames.get(f.parent as usize) {
             Some(frame) => to_parent_frame(frame, origin, rot),
             None => (origin, rot),
         };

@@ -63,13 +63,6 @@ pub(crate) struct BodyState {
     pub q0: Quat,
     pub v0: Vec3,
     pub w0: Vec3,
-    /// The centre of mass in the body's frame, m (its [`CenterOfMass`](crate::body::CenterOfMass);
-    /// zero for most bodies). `x0` and the solver's poses are the centre of mass's; the
-    /// `Transform` is `x − rot·com`.
-    pub com: Vec3,
-    /// The rotation of the body's principal axes in its own frame (identity but for a
-    /// compound body): the solver's orientation is the body's times this.
-    pub frame: Quat,
     /// Principal moments of inertia (body frame) and their inverses (0 for kinematic).
     pub inertia: Vec3,
     pub inv_inertia: Vec3,
@@ -90,6 +83,19 @@ pub(crate) struct BodyState {
     /// and the target it is still on its way to after this step.
     pub driven: bool,
     pub target: Option<(Vec3, Quat)>,
+}
+
+/// How a body's solver pose maps back to its `Transform`, parallel to
+/// [`PhysicsWorld::bodies`] (kept out of the records the solver loops read).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BodyFrame {
+    /// The centre of mass in the body's frame, m (its [`CenterOfMass`](crate::body::CenterOfMass),
+    /// or a compound's; zero for most bodies). `x0` and the solver's poses are the centre
+    /// of mass's; the `Transform` is `x − rot·com`.
+    pub com: Vec3,
+    /// The rotation of the body's principal axes in its own frame (identity but for a
+    /// compound body): the solver's orientation is the body's times this.
+    pub frame: Quat,
     /// Index of its parents' composed transform in [`PhysicsWorld::parent_frames`], or
     /// [`NO_PARENT`]: its `Transform` is written back in that frame.
     pub parent: u32,
@@ -212,6 +218,8 @@ pub struct PhysicsWorld {
     pub(crate) solver_bodies: Vec<SolverBody>,
     /// Cold per-body data, parallel to `solver_bodies`.
     pub(crate) bodies: Vec<BodyState>,
+    /// How each body's pose maps back to its `Transform`, parallel to `bodies`.
+    pub(crate) body_frames: Vec<BodyFrame>,
     /// This step's colliders: the awake ones, then the fixed ones the broad phase found
     /// near them (copied from `fixed`).
     pub(crate) colliders: Vec<ColliderEntry>,

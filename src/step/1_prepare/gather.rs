@@ -6,17 +6,14 @@ use bevy::prelude::*;
 use crate::body::*;
 use crate::collider::Shape;
 use crate::settings::SolverSettings;
-use crate::world::{BodyState, ForceModel, NO_PARENT, SolverBody, world_inv_inertia};
+use crate::world::{BodyState, ForceModel, SolverBody, world_inv_inertia};
 
 /// The per-body inputs of one dynamic or kinematic body.
 pub(super) struct BodyInput<'a> {
     pub entity: Entity,
     pub kind: RigidBody,
-    /// Where the centre of mass is, and where it sits in the body's frame.
+    /// Where the centre of mass is (the solver's position).
     pub pos: Vec3,
-    pub com: Vec3,
-    /// The principal frame in the body's frame; `rot` is the body's rotation times it.
-    pub frame: Quat,
     /// A compound body's mass (kg) and principal moments (kg·m²), summed from its parts.
     pub props: Option<(f32, Vec3)>,
     /// A sphere turning about its centre: its contact point stays under it.
@@ -87,8 +84,6 @@ pub(super) fn gather_body(b: BodyInput, settings: &SolverSettings) -> (BodyState
         kind: b.kind,
         x0: b.pos,
         q0: b.rot,
-        com: b.com,
-        frame: b.frame,
         v0: v,
         w0: w,
         inertia,
@@ -106,7 +101,6 @@ pub(super) fn gather_body(b: BodyInput, settings: &SolverSettings) -> (BodyState
         sleep_time: 0.0,
         driven: false,
         target: None,
-        parent: NO_PARENT,
     };
     let solver = SolverBody {
         v,

@@ -22,7 +22,7 @@ use crate::effects::{Effects, GravityScale, LockRotation};
 use crate::events::CollisionEventsEnabled;
 use crate::layers::{CollisionLayers, Sensor};
 use crate::settings::SolverSettings;
-use crate::world::{ColliderEntry, ContactFilter, NO_PARENT, PhysicsWorld, STATIC};
+use crate::world::{BodyFrame, ColliderEntry, ContactFilter, NO_PARENT, PhysicsWorld, STATIC};
 
 pub use compound::BodyPart;
 use compound::{Part, PartItem, collect_parts, compound_mass, own_part, part_entry};
@@ -124,6 +124,7 @@ pub fn prepare_bodies(
     world.dt = time.timestep().as_secs_f32();
     world.solver_bodies.clear();
     world.bodies.clear();
+    world.body_frames.clear();
     world.colliders.clear();
     world.wake.clear();
     world.parent_frames.clear();
@@ -254,8 +255,6 @@ pub fn prepare_bodies(
             } else {
                 pos + rot * com
             },
-            com,
-            frame,
             props: compound.map(|c| (c.mass, c.moments)),
             round: compound.is_none()
                 && matches!(shape, None | Some(Shape::Sphere { .. }))
@@ -292,11 +291,11 @@ pub fn prepare_bodies(
             }
         }
         state.sleep_time = item.sleep_timer.map_or(0.0, |t| t.0);
-        state.parent = parent;
         state.driven = driven;
         state.target = target;
         world.bodies.push(state);
         world.solver_bodies.push(solver);
+        world.body_frames.push(BodyFrame { com, frame, parent });
         if !parts.is_empty() {
             for p in parts.iter() {
                 if !p.marked {
