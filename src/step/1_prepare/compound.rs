@@ -14,7 +14,7 @@ use super::FilterItem;
 use crate::body::*;
 use crate::collider::{Collider, Shape};
 use crate::math::{part_tensor, principal_axes};
-use crate::world::{ColliderEntry, ContactFilter};
+use crate::world::{ColliderEntry, ContactFilter, FixedSet, STATIC};
 
 /// Tumble's bookkeeping: this collider is a part of the body above it, not a static
 /// collider. Added by tumble; don't insert it yourself.
@@ -73,50 +73,70 @@ pub struct Summed {
     pub frame: Quat,
 }
 
-/// Collects the colliders under `children`, placed in the body's frame (`scale`: the
-/// body's own world scale), into `out`. Stops at entities that are bodies themselves.
-pub fn collect_parts(
-    children: &Children,
-    scale: Vec3,
-    body_density: Option<f32>,
-    query: &Query<PartItem>,
-    out: &mut Vec<Part>,
-) {
-    let mut stack: Vec<(Entity, Transform, usize)> = children
-        .iter()
-        .rev()
-        .map(|c| (c, Transform::from_scale(scale), 1))
-        .collect();
-    while let Some((entity, above, depth)) = stack.pop() {
-        let Ok(item) = query.get(entity) else {
-            continue;
-        };
-        if item.is_body || depth > MAX_DEPTH {
-            continue;
+/// The parts of one body, and the walk's stack, kept between bodies and steps so that
+/// gathering a body with children allocates nothing once warm.
+#[derive(Default)]
+pub struct PartScratch {
+    pub parts: Vec<Part>,
+    stack: Vec<(Entity, Transform, usize)>,
+}
+
+impl PartScratch {
+    /// Replaces `parts` with the colliders under `children`, placed in the body's frame
+    /// (`scale`: the body's own world scale). Stops at entities that are bodies themselves.
+    pub fn collect(
+        &mut self,
+        children: &Children,
+        scale: Vec3,
+        body_density: Option<f32>,
+        query: &Query<PartItem>,
+    ) {
+        let Self { parts, stack } = self;
+        parts.clear();
+        stack.clear();
+        let start = Transform::from_scale(scale);
+        stack.extend(children.iter().rev().map(|c| (c, start, 1)));
+        while let Some((entity, above, depth)) = stack.pop() {
+            let Ok(item) = query.get(entity) else {
+                continue;
+            };
+            if item.is_body || depth > MAX_DEPTH {
+                continue;
+            }
+            let placed = above.mul_transform(*item.transform);
+            if let Some(c) = item.collider {
+                let shape = c.shape.scaled(placed.scale);
+                let density = item
+                    .density
+                    .map(|d| d.0)
+                    .or(body_density)
+                    .unwrap_or(DEFAULT_DENSITY);
+                parts.push(Part {
+                    entity,
+                    key: item.order.map_or(u64::MAX - entity.to_bits(), |o| o.0),
+                    shape,
+                    pos: placed.translation,
+                    rot: placed.rotation.normalize(),
+                    mass: item.mass.map_or(shape.volume() * density, |m| m.0),
+                    friction: item.friction.map_or(DEFAULT_FRICTION, |f| f.0),
+                    restitution: item.restitution.map_or(0.0, |r| r.0),
+                    filter: item.filter.get(),
+                    marked: item.marked,
+                });
+            }
+            if let Some(grand) = item.children {
+                stack.extend(grand.iter().rev().map(|c| (c, placed, depth + 1)));
+            }
         }
-        let placed = above.mul_transform(*item.transform);
-        if let Some(c) = item.collider {
-            let shape = c.shape.scaled(placed.scale);
-            let density = item
-                .density
-                .map(|d| d.0)
-                .or(body_density)
-                .unwrap_or(DEFAULT_DENSITY);
-            out.push(Part {
-                entity,
-                key: item.order.map_or(u64::MAX - entity.to_bits(), |o| o.0),
-                shape,
-                pos: placed.translation,
-                rot: placed.rotation.normalize(),
-                mass: item.mass.map_or(shape.volume() * density, |m| m.0),
-                friction: item.friction.map_or(DEFAULT_FRICTION, |f| f.0),
-                restitution: item.restitution.map_or(0.0, |r| r.0),
-                filter: item.filter.get(),
-                marked: item.marked,
-            });
-        }
-        if let Some(grand) = item.children {
-            stack.extend(grand.iter().rev().map(|c| (c, placed, depth + 1)));
+    }
+
+    /// Puts the collected parts of `owner` (a static body, or a sleeping one) into the
+    /// fixed set at its pose `tf`.
+    pub fn insert_fixed(&self, fixed: &mut FixedSet, owner: Entity, tf: &Transform, asleep: bool) {
+        let at = (tf.translation, tf.rotation.normalize());
+        for p in &self.parts {
+            let entry = part_entry(p, (owner, STATIC), at, (Vec3::ZERO, Quat::IDENTITY));
+            fixed.insert(ColliderEntry { asleep, ..entry });
         }
     }
 }

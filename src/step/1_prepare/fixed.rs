@@ -24,16 +24,16 @@
 use bevy::ecs::query::QueryData;
 use bevy::prelude::*;
 
-use super::compound::{BodyPart, PartItem, collect_parts, part_entry};
+use super::compound::{BodyPart, PartItem, PartScratch};
 use super::hierarchy::{ChainQuery, owner_body, parent_frame, unsupported, world_transform};
 use super::lifecycle::PendingRechecks;
-use super::{FilterItem, Part, fixed_entry, order_key, reject, validate_static};
+use super::{FilterItem, fixed_entry, order_key, reject, validate_static};
 use crate::body::*;
 use crate::collider::Collider;
 use crate::effects::Effects;
 use crate::layers::CollisionLayers;
 use crate::settings::{GlobalForce, SolverSettings};
-use crate::world::{ColliderEntry, PhysicsWorld, STATIC};
+use crate::world::PhysicsWorld;
 
 /// Tumble's bookkeeping: this entity is static or asleep and lives in the fixed set, so
 /// the per-step gather skips it. Added and removed by tumble; don't insert it yourself.
@@ -119,7 +119,7 @@ pub struct SyncScratch {
     /// Per fixed entry: woken already in this search.
     woken: Vec<bool>,
     wake_list: Vec<Entity>,
-    parts: Vec<Part>,
+    parts: PartScratch,
 }
 
 /// Brings the fixed set up to date with what changed since the last step (see the module
@@ -296,20 +296,9 @@ pub fn sync_fixed_set(
         }
         // A compound body's parts sleep with it (a static one's stay).
         if let Some(children) = item.children {
-            parts.clear();
             let density = item.density.map(|d| d.0);
-            collect_parts(children, item.transform.scale, density, &part_items, parts);
-            let at = (
-                item.transform.translation,
-                item.transform.rotation.normalize(),
-            );
-            for p in parts.iter() {
-                let entry = part_entry(p, (entity, STATIC), at, (Vec3::ZERO, Quat::IDENTITY));
-                world.fixed.insert(ColliderEntry {
-                    asleep: item.sleeping,
-                    ..entry
-                });
-            }
+            parts.collect(children, item.transform.scale, density, &part_items);
+            parts.insert_fixed(&mut world.fixed, entity, item.transform, item.sleeping);
         }
         if !item.marked {
             commands.entity(entity).insert(InFixedSet);

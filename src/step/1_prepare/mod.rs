@@ -25,7 +25,7 @@ use crate::settings::SolverSettings;
 use crate::world::{BodyFrame, ColliderEntry, ContactFilter, NO_PARENT, PhysicsWorld, STATIC};
 
 pub use compound::BodyPart;
-use compound::{Part, PartItem, collect_parts, compound_mass, own_part, part_entry};
+use compound::{Part, PartItem, PartScratch, compound_mass, own_part, part_entry};
 pub use fixed::{InFixedSet, sync_fixed_set};
 use gather::MassInput;
 use gather::{BodyInput, gather_body};
@@ -117,7 +117,7 @@ pub fn prepare_bodies(
     mut query: Query<BodyItem, BodyQueryFilter>,
     chain: ChainQuery,
     part_items: Query<PartItem>,
-    mut parts: Local<Vec<Part>>,
+    mut scratch: Local<PartScratch>,
 ) {
     let world = &mut *world;
     // The fixed step's length, also when a paused app single-steps.
@@ -172,36 +172,31 @@ pub fn prepare_bodies(
             }
             // A static compound: its parts are static colliders it owns.
             if let Some(children) = item.children {
-                parts.clear();
                 let density = item.density.map(|d| d.0);
-                collect_parts(children, tf.scale, density, &part_items, &mut parts);
-                let at = (tf.translation, tf.rotation.normalize());
-                for p in parts.iter() {
-                    let frame = (Vec3::ZERO, Quat::IDENTITY);
-                    world
-                        .fixed
-                        .insert(part_entry(p, (entity, STATIC), at, frame));
-                }
+                scratch.collect(children, tf.scale, density, &part_items);
+                scratch.insert_fixed(&mut world.fixed, entity, &tf, false);
             }
             continue;
         }
         let vel = item.velocity.copied().unwrap_or(Velocity::ZERO);
         let shape = item.collider.map(|c| scaled_shape(entity, c, &tf));
         // Colliders on its children make it a compound body.
-        parts.clear();
+        scratch.parts.clear();
         if let Some(children) = item.children {
             let density = item.density.map(|d| d.0);
-            collect_parts(children, tf.scale, density, &part_items, &mut parts);
-            if let (Some(shape), false) = (shape, parts.is_empty()) {
+            scratch.collect(children, tf.scale, density, &part_items);
+            if let (Some(shape), false) = (shape, scratch.parts.is_empty()) {
                 let key = order_key(entity, item.order);
                 let material = (
                     item.friction.map_or(DEFAULT_FRICTION, |f| f.0),
                     item.restitution.map_or(0.0, |r| r.0),
                     item.filter.get(),
                 );
-                parts.insert(0, own_part(entity, key, shape, item.density, material));
+                let own = own_part(entity, key, shape, item.density, material);
+                scratch.parts.insert(0, own);
             }
         }
+        let parts = &scratch.parts;
         if let Some(e) = parts.iter().find_map(|p| validate_part(&tf, kind, p).err()) {
             reject(&mut commands, entity, e);
             continue;
