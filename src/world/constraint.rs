@@ -173,42 +173,58 @@ pub(crate) fn store(bodies: &mut [SolverBody], i: u32, b: SolverBody) {
     }
 }
 
-/// How a contact's anchors move as their bodies turn, when measuring separation.
-#[derive(Clone, Copy, Debug, Default)]
+/// `Anchoring::roll` of a contact with no rolling sphere.
+pub(crate) const NO_ROLL: u32 = u32::MAX;
+
+/// How a contact's anchors move as their bodies turn, when measuring separation. Eight
+/// bytes: the rare rolling arms live in a side list (`PhysicsWorld::rolling_arms`), so
+/// contacts that have none (nearly all) keep the constraint as small as before.
+#[derive(Clone, Copy, Debug)]
 pub(crate) struct Anchoring {
     /// Whether each anchor turns with its body. A sphere's contact point stays under its
     /// centre as it rolls, so its anchor does not turn.
     pub turn: [bool; 2],
-    /// For a sphere whose centre of mass is off its centre: the sphere's centre from the
-    /// centre of mass, world frame, start of step (zero otherwise). That arm turns with
-    /// the body while the contact point stays under the sphere's centre, so the anchor
-    /// moves by the arm's turn alone.
-    pub arm: [Vec3; 2],
-    /// Some arm is not zero.
-    pub rolls: bool,
+    /// For a contact with a sphere whose centre of mass is off its centre: the index of
+    /// its arms in the rolling-arm list (see [`RollingArms`]); else [`NO_ROLL`].
+    pub roll: u32,
 }
 
+/// For a sphere whose centre of mass is off its centre, per side: the sphere's centre
+/// from the centre of mass, world frame, start of step (zero for the other side). That
+/// arm turns with the body while the contact point stays under the sphere's centre, so
+/// the anchor moves by the arm's turn alone.
+pub(crate) type RollingArms = [Vec3; 2];
+
 impl Anchoring {
-    /// Point `p`'s anchors on A and B now, from the bodies' start-of-step centres.
+    /// Whether an arm turns here (a rolling sphere with an off-centre centre of mass).
+    #[inline]
+    pub(crate) fn rolls(&self) -> bool {
+        self.roll != NO_ROLL
+    }
+
+    /// How far each non-turning anchor has moved with its body's turn so far this step:
+    /// zero unless a sphere's arm turns. Once per constraint, not per point.
+    #[inline]
+    pub(crate) fn shift(&self, arms: &[RollingArms], a: &SolverBody, b: &SolverBody) -> [Vec3; 2] {
+        if !self.rolls() {
+            return [Vec3::ZERO; 2];
+        }
+        let arm = arms[self.roll as usize];
+        [a.dq * arm[0] - arm[0], b.dq * arm[1] - arm[1]]
+    }
+
+    /// Point `p`'s anchors on A and B now, from the bodies' start-of-step centres, with
+    /// this constraint's [`shift`](Self::shift).
     #[inline]
     pub(crate) fn anchors(
         &self,
         p: &ConstraintPoint,
         a: &SolverBody,
         b: &SolverBody,
+        shift: [Vec3; 2],
     ) -> (Vec3, Vec3) {
-        if !self.rolls {
-            let ca = if self.turn[0] { a.dq * p.ra } else { p.ra };
-            let cb = if self.turn[1] { b.dq * p.rb } else { p.rb };
-            return (ca, cb);
-        }
-        // Only a sphere with an off-centre centre of mass comes here: its arm turns.
-        let moved = |turn: bool, arm: Vec3, dq: Quat, r: Vec3| {
-            if turn { dq * r } else { r + (dq * arm - arm) }
-        };
-        (
-            moved(self.turn[0], self.arm[0], a.dq, p.ra),
-            moved(self.turn[1], self.arm[1], b.dq, p.rb),
-        )
+        let ca = if self.turn[0] { a.dq * p.ra } else { p.ra + shift[0] };
+        let cb = if self.turn[1] { b.dq * p.rb } else { p.rb + shift[1] };
+        (ca, cb)
     }
 }

@@ -8,8 +8,8 @@ mod fixed_set;
 mod manifold;
 
 pub(crate) use constraint::{
-    Anchoring, AngularRow, ConstraintPoint, ContactConstraint, ContactParams, body, row_velocity,
-    store,
+    Anchoring, AngularRow, ConstraintPoint, ContactConstraint, ContactParams, NO_ROLL,
+    RollingArms, body, row_velocity, store,
 };
 pub(crate) use fixed_set::FixedSet;
 pub(crate) use manifold::{MAX_POINTS, Manifold};
@@ -235,6 +235,9 @@ pub struct PhysicsWorld {
     pub(crate) sensor_overlaps: Vec<Manifold>,
     /// Per-point contact constraints built by the solver.
     pub(crate) constraints: Vec<ContactConstraint>,
+    /// The turning arms of the few constraints with a rolling off-centre sphere
+    /// (`Anchoring::roll` indexes it).
+    pub(crate) rolling_arms: Vec<RollingArms>,
     /// Last step's accumulated impulses by entity pair, for warm starting.
     pub(crate) impulse_cache: HashMap<(Entity, Entity), Manifold>,
     /// Sleeping bodies that an awake body touched this step: they wake.

@@ -146,36 +146,18 @@ pub fn prepare_bodies(
         let kind = *item.kind;
         // Under a parent: simulated in the world, written back in the parent's frame.
         let (tf, parent) = if item.parent {
-            let (world_tf, under_body) = world_transform(entity, &chain);
-            let frame = parent_frame(entity, &chain);
-            let body = kind != RigidBody::Static;
-            if let Some(e) = unsupported(body, &frame, under_body) {
-                reject(&mut commands, entity, e);
-                continue;
+            match parented_pose(entity, kind, &chain, &mut world.parent_frames) {
+                Ok(pose) => pose,
+                Err(e) => {
+                    reject(&mut commands, entity, e);
+                    continue;
+                }
             }
-            let index = world.parent_frames.len() as u32;
-            world.parent_frames.push(frame);
-            (world_tf, index)
         } else {
             (*item.transform, NO_PARENT)
         };
         if kind == RigidBody::Static {
-            commands.entity(entity).insert(InFixedSet);
-            if let Some(c) = item.collider {
-                let key = order_key(entity, item.order);
-                let material = (item.friction, item.restitution, item.filter.get());
-                let entry = fixed_entry(entity, key, &tf, c, material);
-                match validate_static(&tf, c, item.friction, item.restitution) {
-                    Ok(()) => world.fixed.insert(entry(false)),
-                    Err(e) => reject(&mut commands, entity, e),
-                }
-            }
-            // A static compound: its parts are static colliders it owns.
-            if let Some(children) = item.children {
-                let density = item.density.map(|d| d.0);
-                scratch.collect(children, tf.scale, density, &part_items);
-                scratch.insert_fixed(&mut world.fixed, entity, &tf, false);
-            }
+            admit_static(&mut commands, world, &item, &tf, &mut scratch, &part_items);
             continue;
         }
         let vel = item.velocity.copied().unwrap_or(Velocity::ZERO);
@@ -271,12 +253,7 @@ pub fn prepare_bodies(
             gravity_scale: item.gravity_scale.map_or(1.0, |g| g.0),
             rotation_locked: item.lock_rotation || !effects.rotation,
         };
-        let (mut state, mut solver) = gather_body(input, &settings);
-        if let Some(j) = item.impulse.as_mut().filter(|j| dynamic && !j.is_zero()) {
-            apply_impulse(entity, j, &mut state, &mut solver);
-            // Applied once: zeroed without counting as the user's change.
-            *j.bypass_change_detection() = ExternalImpulse::default();
-        }
+        let (mut state, solver) = gather_body(input, &settings);
         if kind == RigidBody::Dynamic {
             let mass = solver.inv_mass.recip();
             let given = (item.mass.is_some(), item.angular_inertia.is_some());
@@ -290,6 +267,14 @@ pub fn prepare_bodies(
         state.target = target;
         world.bodies.push(state);
         world.solver_bodies.push(solver);
+        // On the stored records: borrowing the locals for an out-of-line call kept the
+        // 192-byte state on the stack and copied it three times (+25 ns a body).
+        if let Some(j) = item.impulse.as_mut().filter(|j| dynamic && !j.is_zero()) {
+            let i = index as usize;
+            apply_impulse(entity, j, &mut world.bodies[i], &mut world.solver_bodies[i]);
+            // Applied once: zeroed without counting as the user's change.
+            *j.bypass_change_detection() = ExternalImpulse::default();
+        }
         world.body_frames.push(BodyFrame { com, frame, parent });
         if !parts.is_empty() {
             for p in parts.iter() {
@@ -326,6 +311,57 @@ pub fn prepare_bodies(
     world.kinematic_poses = last_poses;
 }
 
+/// A body under a parent: its world pose through the chain, and the index of its
+/// parent's frame (pushed to `frames`) for writeback. Out of line and cold: most bodies
+/// have no parent.
+#[cold]
+#[inline(never)]
+fn parented_pose(
+    entity: Entity,
+    kind: RigidBody,
+    chain: &ChainQuery,
+    frames: &mut Vec<Transform>,
+) -> Result<(Transform, u32), (&'static str, String)> {
+    let (world_tf, under_body) = world_transform(entity, chain);
+    let frame = parent_frame(entity, chain);
+    if let Some(e) = unsupported(kind != RigidBody::Static, &frame, under_body) {
+        return Err(e);
+    }
+    frames.push(frame);
+    Ok((world_tf, frames.len() as u32 - 1))
+}
+
+/// A `RigidBody::Static` met for the first time: it and its parts go into the fixed set,
+/// and it is not gathered again. Out of line: it happens once per static body.
+#[cold]
+#[inline(never)]
+fn admit_static(
+    commands: &mut Commands,
+    world: &mut PhysicsWorld,
+    item: &BodyItemItem,
+    tf: &Transform,
+    scratch: &mut PartScratch,
+    part_items: &Query<PartItem>,
+) {
+    let entity = item.entity;
+    commands.entity(entity).insert(InFixedSet);
+    if let Some(c) = item.collider {
+        let key = order_key(entity, item.order);
+        let material = (item.friction, item.restitution, item.filter.get());
+        let entry = fixed_entry(entity, key, tf, c, material);
+        match validate_static(tf, c, item.friction, item.restitution) {
+            Ok(()) => world.fixed.insert(entry(false)),
+            Err(e) => reject(commands, entity, e),
+        }
+    }
+    // A static compound: its parts are static colliders it owns.
+    if let Some(children) = item.children {
+        let density = item.density.map(|d| d.0);
+        scratch.collect(children, tf.scale, density, part_items);
+        scratch.insert_fixed(&mut world.fixed, entity, tf, false);
+    }
+}
+
 /// A collider's place in the step's canonical order: its [`SpawnOrder`] (every collider
 /// gets one when it appears; the entity's bits stand in until then).
 #[inline]
@@ -355,6 +391,9 @@ fn validate_static(
 /// (a sphere stretched unevenly) takes its largest axis, with a warning.
 #[inline]
 pub fn scaled_shape(entity: Entity, collider: &Collider, tf: &Transform) -> Shape {
+    if tf.scale == Vec3::ONE {
+        return collider.shape;
+    }
     if !collider.shape.scales_exactly(tf.scale) {
         warn_once!(
             "tumble: a sphere collider cannot scale unevenly (entity {entity}, scale {}); it \

@@ -8,7 +8,7 @@ use super::stiffness::{contact_softness, pair_size};
 use crate::collider::Shape;
 use crate::world::{
     Anchoring, AngularRow, BodyState, ColliderEntry, ConstraintPoint, ContactConstraint,
-    ContactParams, MAX_POINTS, Manifold, STATIC, SolverBody, body, is_isotropic, row_velocity,
+    ContactParams, MAX_POINTS, Manifold, NO_ROLL, RollingArms, STATIC, SolverBody, body, is_isotropic, row_velocity,
 };
 
 /// A turning sphere's centre from its body's centre of mass (zero when they coincide,
@@ -89,8 +89,10 @@ pub fn prepare_constraints(
     overlaps: &mut Vec<u32>,
     heaviest: &mut Vec<f32>,
     out: &mut Vec<ContactConstraint>,
+    arms: &mut Vec<RollingArms>,
 ) -> f32 {
     out.clear();
+    arms.clear();
     count_overlaps(manifolds, colliders, states.len(), overlaps);
     heaviest.clear();
     heaviest.resize(states.len(), 0.0);
@@ -159,8 +161,12 @@ pub fn prepare_constraints(
                     spin[0] && !matches!(ca.shape, Shape::Sphere { .. }),
                     spin[1] && !matches!(cb.shape, Shape::Sphere { .. }),
                 ],
-                arm,
-                rolls: arm != [Vec3::ZERO; 2],
+                roll: if arm == [Vec3::ZERO; 2] {
+                    NO_ROLL
+                } else {
+                    arms.push(arm);
+                    arms.len() as u32 - 1
+                },
             },
             spin,
             refresh: (spin[0] && (anisotropic(ca.body) || arm[0] != Vec3::ZERO))
@@ -183,7 +189,12 @@ pub fn prepare_constraints(
         for (cp, p) in c.points.iter_mut().zip(m.points()) {
             let (ra, rb) = (p.point - centre(ca), p.point - centre(cb));
             let normal_row = AngularRow::new(&sa, &sb, ra, rb, m.normal);
-            let tangent_rows = [t1, t2].map(|t| AngularRow::new(&sa, &sb, ra, rb, t));
+            // Two calls, not `[t1, t2].map(..)`: the array map's closure was not inlined
+            // and made this loop 87 % slower (perf, 385-cube pyramid).
+            let tangent_rows = [
+                AngularRow::new(&sa, &sb, ra, rb, t1),
+                AngularRow::new(&sa, &sb, ra, rb, t2),
+            ];
             *cp = ConstraintPoint {
                 ra,
                 rb,
@@ -213,21 +224,29 @@ pub fn prepare_constraints(
 /// *was*, which is mostly across the rod now, and the step hands it hundreds of joules
 /// (`tests/regress_turning_rod_inertia.rs`). The anchors stay at the start of the step:
 /// impulses along any fixed row with the true mass matrix cannot add energy.
-pub fn refresh_rows(bodies: &[SolverBody], constraints: &mut [ContactConstraint]) {
+pub fn refresh_rows(
+    bodies: &[SolverBody],
+    constraints: &mut [ContactConstraint],
+    arms: &[RollingArms],
+) {
     for c in constraints.iter_mut().filter(|c| c.refresh) {
         let (a, b) = (body(bodies, c.a), body(bodies, c.b));
         let linear = a.inv_mass + b.inv_mass;
-        let (anchoring, rolls) = (c.anchoring, c.anchoring.rolls);
+        let anchoring = c.anchoring;
+        let rolls = anchoring.rolls();
+        let shift = anchoring.shift(arms, &a, &b);
         for p in c.points[..c.len].iter_mut() {
             if rolls {
                 // A sphere rolling about an off-centre centre of mass: its contact point
                 // stays under its centre, so the lever arm turns with the centre, and
                 // the rows follow it (a start-of-step arm lags the rocking and pumps it:
                 // a weeble's swing grew 20 % in three periods).
-                let (ra, rb) = anchoring.anchors(p, &a, &b);
+                let (ra, rb) = anchoring.anchors(p, &a, &b, shift);
                 p.normal_row = AngularRow::new(&a, &b, ra, rb, c.normal);
-                p.tangent_rows =
-                    [c.tangent1, c.tangent2].map(|t| AngularRow::new(&a, &b, ra, rb, t));
+                p.tangent_rows = [
+                    AngularRow::new(&a, &b, ra, rb, c.tangent1),
+                    AngularRow::new(&a, &b, ra, rb, c.tangent2),
+                ];
             }
             let rows = std::iter::once(&mut p.normal_row).chain(p.tangent_rows.iter_mut());
             for row in rows {

@@ -5,7 +5,9 @@
 
 use bevy::prelude::*;
 
-use crate::world::{AngularRow, ContactConstraint, SolverBody, body, row_velocity, store};
+use crate::world::{
+    AngularRow, ContactConstraint, RollingArms, SolverBody, body, row_velocity, store,
+};
 
 /// Linear impulse `p` on b and −p on a, with the angular parts `ang_a`, `ang_b`
 /// (inverse inertia times r × p, already scaled).
@@ -88,6 +90,7 @@ pub fn warm_start(bodies: &mut [SolverBody], constraints: &[ContactConstraint]) 
 pub fn solve(
     bodies: &mut [SolverBody],
     constraints: &mut [ContactConstraint],
+    arms: &[RollingArms],
     h: f32,
     use_bias: bool,
 ) {
@@ -95,6 +98,7 @@ pub fn solve(
     for c in constraints.iter_mut() {
         let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
         let anchoring = c.anchoring;
+        let shift = anchoring.shift(arms, &a, &b);
         let dp = b.dp - a.dp;
         let spin = c.spin;
         // A manifold's normal rows are coupled through its two bodies (a cube's corner
@@ -106,7 +110,7 @@ pub fn solve(
         for _ in 0..sweeps {
             let (mut largest, mut total, mut capped) = (0.0f32, 0.0f32, false);
             for p in c.points[..c.len].iter_mut() {
-                let (ca, cb) = anchoring.anchors(p, &a, &b);
+                let (ca, cb) = anchoring.anchors(p, &a, &b, shift);
                 let s = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
                 let (bias, mass_scale, impulse_scale) = if s > 0.0 {
                     (s * inv_h, 1.0, 0.0)
@@ -210,13 +214,18 @@ pub fn apply_restitution(
 /// a bounce off this contact stays). Run over the contacts with fixed colliders: a light
 /// ball knocked toward a wall by a heavy one's bounce left the step 5 mm inside the wall
 /// at 12.7 m/s, and sank 1.5 cm under the next steps' load.
-pub fn stop_approach(bodies: &mut [SolverBody], constraints: &mut [ContactConstraint]) {
+pub fn stop_approach(
+    bodies: &mut [SolverBody],
+    constraints: &mut [ContactConstraint],
+    arms: &[RollingArms],
+) {
     for c in constraints.iter_mut() {
         let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
         let anchoring = c.anchoring;
+        let shift = anchoring.shift(arms, &a, &b);
         let dp = b.dp - a.dp;
         for p in c.points[..c.len].iter_mut() {
-            let (ca, cb) = anchoring.anchors(p, &a, &b);
+            let (ca, cb) = anchoring.anchors(p, &a, &b, shift);
             let s = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
             let vn = row_velocity(&a, &b, c.normal, &p.normal_row, c.spin);
             if s > 0.0 || vn >= 0.0 {

@@ -158,8 +158,9 @@ fn run_stage(
             let stiffness = *params;
             let (m, c, s) = (&world.manifolds, &world.colliders, &world.bodies);
             let (out, overlaps) = (&mut world.constraints, &mut scratch.overlaps);
-            let heaviest = &mut scratch.heaviest;
-            let ratio = prepare_constraints(m, c, s, bodies, stiffness, overlaps, heaviest, out);
+            let (heaviest, arms) = (&mut scratch.heaviest, &mut world.rolling_arms);
+            let ratio =
+                prepare_constraints(m, c, s, bodies, stiffness, overlaps, heaviest, out, arms);
             let fixed = |c: &&ContactConstraint| c.a == STATIC || c.b == STATIC;
             scratch.fixed_constraints = world.constraints.iter().take_while(fixed).count();
             debug_assert!(
@@ -197,8 +198,9 @@ fn run_stage(
             // and the property tests find fewer bodies pushed into walls.
             let fixed = scratch.fixed_constraints;
             for _ in 0..iterations {
-                solve(bodies, &mut world.constraints, h, use_bias);
-                solve(bodies, &mut world.constraints[..fixed], h, use_bias);
+                let arms = &world.rolling_arms;
+                solve(bodies, &mut world.constraints, arms, h, use_bias);
+                solve(bodies, &mut world.constraints[..fixed], arms, h, use_bias);
             }
         }
         SolverStage::IntegratePositions => {
@@ -213,7 +215,7 @@ fn run_stage(
             }
             // The world inertia of an anisotropic body turned with it: the rows follow.
             if scratch.refresh {
-                refresh_rows(bodies, &mut world.constraints);
+                refresh_rows(bodies, &mut world.constraints, &world.rolling_arms);
             }
         }
         SolverStage::Restitution => {
@@ -225,7 +227,7 @@ fn run_stage(
             // A bounce between two bodies can send one into a wall it is touching; the
             // world has the last word here too.
             let fixed = scratch.fixed_constraints;
-            stop_approach(bodies, &mut world.constraints[..fixed]);
+            stop_approach(bodies, &mut world.constraints[..fixed], &world.rolling_arms);
         }
         SolverStage::StoreImpulses => store_impulses(world),
     }
