@@ -25,6 +25,31 @@ pub enum Shape {
         /// Half the box's size along local x, y, z, m.
         half_extents: Vec3,
     },
+    /// A capsule along local Y: a segment from −`half_height` to +`half_height` swept by
+    /// a ball of `radius` (total height 2·(half_height + radius)). Collided by parry3d.
+    Capsule {
+        /// Radius of the swept ball, m.
+        radius: f32,
+        /// Half the length of the inner segment (the caps excluded), m.
+        half_height: f32,
+    },
+    /// A solid cylinder along local Y, from −`half_height` to +`half_height`. Collided by
+    /// parry3d.
+    Cylinder {
+        /// Radius, m.
+        radius: f32,
+        /// Half the height, m.
+        half_height: f32,
+    },
+    /// A solid cone along local Y: its base (of `radius`) at −`half_height`, its tip at
+    /// +`half_height`; the origin is midway, and the centre of mass a quarter of the
+    /// height above the base (see [`Shape::center_of_mass`]). Collided by parry3d.
+    Cone {
+        /// Radius of the base, m.
+        radius: f32,
+        /// Half the height, m.
+        half_height: f32,
+    },
     /// A static plane through the origin of its entity with normal local +Y. `half_extents`
     /// bounds it to a rectangle in local X/Z; `None` makes it infinite.
     Plane {
@@ -40,8 +65,19 @@ pub enum ShapeKind {
     Sphere = 0,
     /// [`Shape::Cuboid`].
     Cuboid = 1,
-    /// [`Shape::Plane`].
-    Plane = 2,
+    /// [`Shape::Capsule`].
+    Capsule = 2,
+    /// [`Shape::Cylinder`].
+    Cylinder = 3,
+    /// [`Shape::Cone`].
+    Cone = 4,
+    /// [`Shape::Plane`] (last: planes are static only).
+    Plane = 5,
+}
+
+impl ShapeKind {
+    /// How many kinds there are (the size of the dispatch table).
+    pub const COUNT: usize = 6;
 }
 
 impl Collider {
@@ -56,6 +92,35 @@ impl Collider {
         Self {
             shape: Shape::Cuboid {
                 half_extents: Vec3::new(half_x, half_y, half_z),
+            },
+        }
+    }
+    /// A capsule along local Y: the segment between y = ±`half_height` swept by a ball
+    /// of `radius` (avian's `Capsule::new(radius, length)` takes the whole segment length).
+    pub fn capsule(radius: f32, half_height: f32) -> Self {
+        Self {
+            shape: Shape::Capsule {
+                radius,
+                half_height,
+            },
+        }
+    }
+    /// A solid cylinder along local Y of `radius` and height 2·`half_height`.
+    pub fn cylinder(radius: f32, half_height: f32) -> Self {
+        Self {
+            shape: Shape::Cylinder {
+                radius,
+                half_height,
+            },
+        }
+    }
+    /// A solid cone along local Y: base of `radius` at y = −`half_height`, tip at
+    /// +`half_height`.
+    pub fn cone(radius: f32, half_height: f32) -> Self {
+        Self {
+            shape: Shape::Cone {
+                radius,
+                half_height,
             },
         }
     }
@@ -81,6 +146,9 @@ impl Shape {
         match self {
             Shape::Sphere { .. } => ShapeKind::Sphere,
             Shape::Cuboid { .. } => ShapeKind::Cuboid,
+            Shape::Capsule { .. } => ShapeKind::Capsule,
+            Shape::Cylinder { .. } => ShapeKind::Cylinder,
+            Shape::Cone { .. } => ShapeKind::Cone,
             Shape::Plane { .. } => ShapeKind::Plane,
         }
     }
@@ -94,6 +162,24 @@ impl Shape {
             Shape::Cuboid { half_extents: h } if !(ok(h.x) && ok(h.y) && ok(h.z)) => {
                 Err(format!("cuboid half extents {h}"))
             }
+            Shape::Capsule {
+                radius,
+                half_height,
+            } if !(ok(radius) && ok(half_height)) => {
+                Err(format!("capsule radius {radius}, half height {half_height}"))
+            }
+            Shape::Cylinder {
+                radius,
+                half_height,
+            } if !(ok(radius) && ok(half_height)) => {
+                Err(format!("cylinder radius {radius}, half height {half_height}"))
+            }
+            Shape::Cone {
+                radius,
+                half_height,
+            } if !(ok(radius) && ok(half_height)) => {
+                Err(format!("cone radius {radius}, half height {half_height}"))
+            }
             Shape::Plane {
                 half_extents: Some(h),
             } if !(ok(h.x) && ok(h.y)) => Err(format!("plane half extents {h}")),
@@ -106,7 +192,20 @@ impl Shape {
         match *self {
             Shape::Sphere { radius } => 4.0 / 3.0 * std::f32::consts::PI * radius.powi(3),
             Shape::Cuboid { half_extents: h } => 8.0 * h.x * h.y * h.z,
+            Shape::Capsule { .. } | Shape::Cylinder { .. } | Shape::Cone { .. } => {
+                crate::geometry::unit_mass(self).0
+            }
             Shape::Plane { .. } => 0.0,
+        }
+    }
+
+    /// The solid shape's centre of mass in its local frame, m: the origin but for a
+    /// cone, whose centre of mass is a quarter of its height above the base.
+    #[inline]
+    pub fn center_of_mass(&self) -> Vec3 {
+        match *self {
+            Shape::Cone { half_height, .. } => Vec3::new(0.0, -0.5 * half_height, 0.0),
+            _ => Vec3::ZERO,
         }
     }
 
@@ -119,6 +218,11 @@ impl Shape {
                 let (x2, y2, z2) = (s.x * s.x, s.y * s.y, s.z * s.z);
                 Vec3::new(y2 + z2, x2 + z2, x2 + y2) * (mass / 12.0)
             }
+            // From parry3d's mass properties at unit density, scaled to the mass.
+            Shape::Capsule { .. } | Shape::Cylinder { .. } | Shape::Cone { .. } => {
+                let (volume, inertia) = crate::geometry::unit_mass(self);
+                inertia * (mass / volume)
+            }
             // A plane has no volume; a kinematic plane never needs inertia.
             Shape::Plane { .. } => Vec3::splat(mass),
         }
@@ -127,7 +231,8 @@ impl Shape {
     /// The shape under a `Transform::scale`: a box's half extents and a bounded plane's
     /// rectangle scale per axis (by the magnitude), a sphere by its largest axis (a
     /// sphere cannot scale non-uniformly: see [`scales_exactly`](Self::scales_exactly)),
-    /// an infinite plane not at all.
+    /// a capsule, cylinder or cone along Y by y and across by the larger of x and z, an
+    /// infinite plane not at all.
     pub fn scaled(self, scale: Vec3) -> Self {
         let s = scale.abs();
         if s == Vec3::ONE {
@@ -140,6 +245,27 @@ impl Shape {
             Shape::Cuboid { half_extents } => Shape::Cuboid {
                 half_extents: half_extents * s,
             },
+            Shape::Capsule {
+                radius,
+                half_height,
+            } => Shape::Capsule {
+                radius: radius * s.x.max(s.z),
+                half_height: half_height * s.y,
+            },
+            Shape::Cylinder {
+                radius,
+                half_height,
+            } => Shape::Cylinder {
+                radius: radius * s.x.max(s.z),
+                half_height: half_height * s.y,
+            },
+            Shape::Cone {
+                radius,
+                half_height,
+            } => Shape::Cone {
+                radius: radius * s.x.max(s.z),
+                half_height: half_height * s.y,
+            },
             Shape::Plane { half_extents } => Shape::Plane {
                 half_extents: half_extents.map(|h| h * Vec2::new(s.x, s.z)),
             },
@@ -147,10 +273,16 @@ impl Shape {
     }
 
     /// Whether [`scaled`](Self::scaled) is exact for this scale (not for a sphere
-    /// stretched more along one axis than another).
+    /// stretched more along one axis than another, nor a capsule, cylinder or cone
+    /// stretched unevenly across its axis, nor a capsule along it: its caps stay round).
     pub fn scales_exactly(&self, scale: Vec3) -> bool {
         let s = scale.abs();
-        !matches!(self, Shape::Sphere { .. }) || (s.x == s.y && s.y == s.z)
+        match self {
+            Shape::Sphere { .. } => s.x == s.y && s.y == s.z,
+            Shape::Capsule { .. } => s.x == s.y && s.y == s.z,
+            Shape::Cylinder { .. } | Shape::Cone { .. } => s.x == s.z,
+            Shape::Cuboid { .. } | Shape::Plane { .. } => true,
+        }
     }
 
     /// The shape's smallest dimension, m: a sphere's diameter, a box's thinnest side; a
@@ -160,6 +292,15 @@ impl Shape {
         match *self {
             Shape::Sphere { radius } => 2.0 * radius,
             Shape::Cuboid { half_extents } => 2.0 * half_extents.min_element(),
+            Shape::Capsule { radius, .. } => 2.0 * radius,
+            Shape::Cylinder {
+                radius,
+                half_height,
+            }
+            | Shape::Cone {
+                radius,
+                half_height,
+            } => 2.0 * radius.min(half_height),
             Shape::Plane { .. } => f32::INFINITY,
         }
     }
@@ -176,6 +317,26 @@ impl Shape {
         let half = match *self {
             Shape::Sphere { radius } => Vec3::splat(radius),
             Shape::Cuboid { half_extents } => abs_rotated(rot, half_extents),
+            // The segment's reach along its axis plus the ball.
+            Shape::Capsule {
+                radius,
+                half_height,
+            } => (rot * Vec3::Y).abs() * half_height + Vec3::splat(radius),
+            // A disc of radius r with normal a reaches r·√(1 − a_i²) along axis i; the two
+            // end discs sit ±h·a from the centre. The cone's box is its cylinder's.
+            Shape::Cylinder {
+                radius,
+                half_height,
+            }
+            | Shape::Cone {
+                radius,
+                half_height,
+            } => {
+                let a = rot * Vec3::Y;
+                let disc = (Vec3::ONE - a * a).max(Vec3::ZERO);
+                a.abs() * half_height
+                    + Vec3::new(disc.x.sqrt(), disc.y.sqrt(), disc.z.sqrt()) * radius
+            }
             Shape::Plane {
                 half_extents: Some(h),
             } => abs_rotated(rot, Vec3::new(h.x, 0.0, h.y)),

@@ -28,6 +28,35 @@ fn reach(shape: ShapeDesc, q: Quat, n: Vec3) -> f32 {
         ShapeDesc::Cuboid(h) => (0..3)
             .map(|i| h[i] * (q * Vec3::AXES[i]).dot(n).abs())
             .sum(),
+        // Parry's support point along n (the cone's origin is midway up its axis).
+        _ => {
+            use parry3d::shape::SupportMap;
+            let local = q.inverse() * n;
+            match shape {
+                ShapeDesc::Capsule(r, h) => parry3d::shape::Capsule::new_y(h, r)
+                    .local_support_point(local)
+                    .dot(local),
+                ShapeDesc::Cylinder(r, h) => parry3d::shape::Cylinder::new(h, r)
+                    .local_support_point(local)
+                    .dot(local),
+                ShapeDesc::Cone(r, h) => parry3d::shape::Cone::new(h, r)
+                    .local_support_point(local)
+                    .dot(local),
+                _ => unreachable!(),
+            }
+        }
+    }
+}
+
+/// A scene body's shape as parry's, for the pairs the hand-written overlaps don't cover.
+fn parry_shape(shape: ShapeDesc) -> parry3d::shape::SharedShape {
+    use parry3d::shape::SharedShape;
+    match shape {
+        ShapeDesc::Sphere(r) => SharedShape::ball(r),
+        ShapeDesc::Cuboid(h) => SharedShape::cuboid(h.x, h.y, h.z),
+        ShapeDesc::Capsule(r, h) => SharedShape::capsule_y(h, r),
+        ShapeDesc::Cylinder(r, h) => SharedShape::cylinder(h, r),
+        ShapeDesc::Cone(r, h) => SharedShape::cone(h, r),
     }
 }
 
@@ -65,6 +94,15 @@ fn overlap(a: (ShapeDesc, Vec3, Quat), b: (ShapeDesc, Vec3, Quat)) -> f32 {
                     ra + rb - t.dot(l).abs()
                 })
                 .fold(f32::INFINITY, f32::min)
+        }
+        // Capsules, cylinders and cones: parry's contact depth.
+        ((sa, pa, qa), (sb, pb, qb)) => {
+            let pose = |p: Vec3, q: Quat| parry3d::math::Pose::from_parts(p, q.normalize());
+            let (ga, gb) = (parry_shape(sa), parry_shape(sb));
+            parry3d::query::contact(&pose(pa, qa), &*ga, &pose(pb, qb), &*gb, 0.0)
+                .ok()
+                .flatten()
+                .map_or(0.0, |c| -c.dist)
         }
     };
     depth.max(0.0)

@@ -1,19 +1,24 @@
 //! Geometry: the contact manifold of two posed shapes, by a dispatch table over shape
-//! pairs (sphere, box, plane), each pair in its own file. Plain functions without Bevy's
+//! pairs. Sphere, box and plane pairs are ours, each in its own file; every pair with a
+//! capsule, cylinder or cone goes to parry3d ([`parry`]). Plain functions without Bevy's
 //! ECS; the narrow phase and the continuous sweep call [`collide`].
 
 mod box_box;
 mod box_frame;
 mod box_plane;
+mod parry;
 mod polygon;
+pub(crate) mod query;
 mod sphere_box;
 mod sphere_plane;
 mod sphere_sphere;
 
 use bevy::prelude::*;
 
-use crate::collider::Shape;
+use crate::collider::{Shape, ShapeKind};
 use crate::world::{ColliderEntry, Manifold};
+
+pub(crate) use parry::unit_mass;
 
 /// A shape at a pose.
 #[derive(Clone, Copy, Debug)]
@@ -75,12 +80,18 @@ fn box_plane(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
 }
 
 /// The dispatch table, indexed by [`ShapeKind`] (A ≤ B). `None`: the pair never collides.
-const DISPATCH: [[Option<CollideFn>; 3]; 3] = [
-    //   Sphere             Cuboid           Plane
-    [Some(sphere_sphere), Some(sphere_box), Some(sphere_plane)], // Sphere
-    [None, Some(box_box), Some(box_plane)],                      // Cuboid
-    [None, None, None],                                          // Plane (static only)
-];
+const DISPATCH: [[Option<CollideFn>; ShapeKind::COUNT]; ShapeKind::COUNT] = {
+    let p = Some(parry::collide as CollideFn);
+    [
+        //   Sphere             Cuboid           Capsule Cylinder Cone Plane
+        [Some(sphere_sphere), Some(sphere_box), p, p, p, Some(sphere_plane)], // Sphere
+        [None, Some(box_box), p, p, p, Some(box_plane)],                      // Cuboid
+        [None, None, p, p, p, p],                                             // Capsule
+        [None, None, None, p, p, p],                                          // Cylinder
+        [None, None, None, None, p, p],                                       // Cone
+        [None, None, None, None, None, None],                                 // Plane (static only)
+    ]
+};
 
 /// Collides two colliders, ordering them for the table. The manifold's normal points from
 /// `a` to `b` as given. Returns `None` when they don't touch within `margin`.

@@ -152,6 +152,21 @@ pub enum ShapeDesc {
     Sphere(#[serde(deserialize_with = "check::size")] f32),
     /// Half extents.
     Cuboid(#[serde(deserialize_with = "check::sizes")] Vec3),
+    /// A capsule along Y: (radius, half the inner segment's length), m.
+    Capsule(
+        #[serde(deserialize_with = "check::size")] f32,
+        #[serde(deserialize_with = "check::size")] f32,
+    ),
+    /// A cylinder along Y: (radius, half height), m.
+    Cylinder(
+        #[serde(deserialize_with = "check::size")] f32,
+        #[serde(deserialize_with = "check::size")] f32,
+    ),
+    /// A cone along Y, tip up: (base radius, half height), m.
+    Cone(
+        #[serde(deserialize_with = "check::size")] f32,
+        #[serde(deserialize_with = "check::size")] f32,
+    ),
 }
 
 /// One body.
@@ -202,6 +217,9 @@ impl BodyDesc {
         match self.shape {
             ShapeDesc::Sphere(r) => Collider::sphere(r),
             ShapeDesc::Cuboid(h) => Collider::cuboid(h.x, h.y, h.z),
+            ShapeDesc::Capsule(r, h) => Collider::capsule(r, h),
+            ShapeDesc::Cylinder(r, h) => Collider::cylinder(r, h),
+            ShapeDesc::Cone(r, h) => Collider::cone(r, h),
         }
     }
 

@@ -62,6 +62,19 @@ fn add_body_meshes(
         let (mesh, color) = match collider.shape {
             Shape::Sphere { radius } => (Sphere::new(radius).mesh().ico(3).unwrap(), None),
             Shape::Cuboid { half_extents } => (Cuboid::from_size(half_extents * 2.0).into(), None),
+            Shape::Capsule {
+                radius,
+                half_height,
+            } => (Capsule3d::new(radius, 2.0 * half_height).into(), None),
+            Shape::Cylinder {
+                radius,
+                half_height,
+            } => (Cylinder::new(radius, 2.0 * half_height).into(), None),
+            // Bevy's cone, like ours, has its tip up and its origin midway.
+            Shape::Cone {
+                radius,
+                half_height,
+            } => (Cone::new(radius, 2.0 * half_height).into(), None),
             Shape::Plane { half_extents } => {
                 let h = half_extents.unwrap_or(Vec2::splat(40.0));
                 let tint = if half_extents.is_some() {

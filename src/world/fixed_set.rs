@@ -4,35 +4,24 @@
 //! search order only when the set changes. Each step, the broad phase asks it for the
 //! entries that overlap an awake collider's box; entries near nothing awake cost nothing.
 //!
-//! Search: entries are sorted by their lower x bound. A query box [lo, hi] can only meet
-//! entries whose lower x lies in [lo.x − widest, hi.x], found by binary search, where
-//! `widest` is the widest entry along x. A few very wide entries (infinite planes, long
-//! walls) would make that window the whole set, so entries more than [`WIDE_FACTOR`] times
-//! the median width sit in a short list that every query tests.
+//! Search: a [`BoundsIndex`] over the entries' boxes (sorted by lower x bound, very wide
+//! entries apart), rebuilt only when the set changed.
 
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 
+use super::bounds_index::BoundsIndex;
 use crate::world::{ColliderEntry, STATIC};
-
-/// Entries wider along x than this many median widths go in the always-tested list.
-pub(crate) const WIDE_FACTOR: f32 = 8.0;
 
 #[derive(Default, Debug, Clone)]
 pub(crate) struct FixedSet {
     entries: Vec<ColliderEntry>,
     /// Where each entity's entry is in `entries`.
     slots: HashMap<Entity, u32>,
-    /// Indices of the ordinary entries, by lower x bound.
-    sorted: Vec<u32>,
-    /// Indices of the very wide entries.
-    wide: Vec<u32>,
-    /// Widest ordinary entry along x.
-    widest: f32,
-    /// Entries changed since `sorted` and `wide` were built.
+    /// The search order over the entries' boxes.
+    index: BoundsIndex,
+    /// Entries changed since `index` was built.
     dirty: bool,
-    /// Scratch for the median width, kept so a rebuild does not allocate.
-    widths: Vec<f32>,
     /// The parts of sleeping compound bodies, by body: they leave with it.
     parts: HashMap<Entity, Vec<Entity>>,
 }
@@ -100,62 +89,37 @@ impl FixedSet {
             return;
         }
         self.dirty = false;
-        let width = |c: &ColliderEntry| c.aabb_max.x - c.aabb_min.x;
-        self.widths.clear();
-        self.widths.extend(self.entries.iter().map(width));
-        let mid = self.widths.len() / 2;
-        let median = if self.widths.is_empty() {
-            0.0
-        } else {
-            *self.widths.select_nth_unstable_by(mid, f32::total_cmp).1
-        };
-        let limit = WIDE_FACTOR * median;
-        self.sorted.clear();
-        self.wide.clear();
-        self.widest = 0.0;
-        for (i, c) in self.entries.iter().enumerate() {
-            let w = width(c);
-            if w.is_finite() && w <= limit {
-                self.sorted.push(i as u32);
-                self.widest = self.widest.max(w);
-            } else {
-                self.wide.push(i as u32);
-            }
-        }
         let entries = &self.entries;
-        self.sorted.sort_by(|&a, &b| {
-            entries[a as usize]
-                .aabb_min
-                .x
-                .total_cmp(&entries[b as usize].aabb_min.x)
+        self.index.rebuild(entries.len(), |i| {
+            let c = &entries[i as usize];
+            (c.aabb_min, c.aabb_max)
         });
     }
 
     /// Calls `found` with the index of every entry whose bounds, fattened by `margin`,
     /// overlap [lo, hi]. Call [`update_search`](Self::update_search) after changes first.
     #[inline]
-    pub fn overlapping(&self, lo: Vec3, hi: Vec3, margin: f32, mut found: impl FnMut(u32)) {
+    pub fn overlapping(&self, lo: Vec3, hi: Vec3, margin: f32, found: impl FnMut(u32)) {
         debug_assert!(!self.dirty, "FixedSet searched before update_search");
         let (lo, hi) = (lo - Vec3::splat(margin), hi + Vec3::splat(margin));
-        let overlaps = |i: u32| {
-            let c = &self.entries[i as usize];
-            c.aabb_min.cmple(hi).all() && lo.cmple(c.aabb_max).all()
+        let entries = &self.entries;
+        let aabb = |i: u32| {
+            let c = &entries[i as usize];
+            (c.aabb_min, c.aabb_max)
         };
-        let key = |i: &u32| self.entries[*i as usize].aabb_min.x;
-        let start = self.sorted.partition_point(|i| key(i) < lo.x - self.widest);
-        for &i in &self.sorted[start..] {
-            if key(&i) > hi.x {
-                break;
-            }
-            if overlaps(i) {
-                found(i);
-            }
-        }
-        for &i in &self.wide {
-            if overlaps(i) {
-                found(i);
-            }
-        }
+        self.index.overlapping(aabb, lo, hi, found);
+    }
+
+    /// The union of the entries' finite boxes (not infinite planes), m; lo > hi when
+    /// there are none. As of the last [`update_search`](Self::update_search).
+    pub fn extent(&self) -> (Vec3, Vec3) {
+        self.index.extent()
+    }
+
+    /// Whether the search order is up to date (the broad phase updates it; with
+    /// collisions off, or after a change since, it is not).
+    pub fn is_searchable(&self) -> bool {
+        !self.dirty
     }
 
     /// The reference for [`overlapping`](Self::overlapping): every entry tested.

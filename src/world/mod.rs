@@ -3,6 +3,7 @@
 //! the fixed set, contact manifolds and contact constraints. It imports no stage; every
 //! stage imports it.
 
+mod bounds_index;
 mod constraint;
 mod fixed_set;
 mod manifold;
@@ -11,6 +12,7 @@ pub(crate) use constraint::{
     Anchoring, AngularRow, ConstraintPoint, ContactConstraint, ContactParams, NO_ROLL,
     RollingArms, body, row_velocity, store,
 };
+pub(crate) use bounds_index::BoundsIndex;
 pub(crate) use fixed_set::FixedSet;
 pub(crate) use manifold::{MAX_POINTS, Manifold};
 

@@ -146,7 +146,9 @@ impl PartScratch {
 /// parallel-axis theorem before the sum is diagonalised.
 pub fn sum_parts(parts: &[Part]) -> Summed {
     let mass: f32 = parts.iter().map(|p| p.mass).sum();
-    let com = parts.iter().map(|p| p.pos * p.mass).sum::<Vec3>() / mass;
+    // Each part's own centre of mass (off its origin for a cone).
+    let centre = |p: &Part| p.pos + p.rot * p.shape.center_of_mass();
+    let com = parts.iter().map(|p| centre(p) * p.mass).sum::<Vec3>() / mass;
     let tensor = parts
         .iter()
         .map(|p| {
@@ -154,7 +156,7 @@ pub fn sum_parts(parts: &[Part]) -> Summed {
                 p.shape.principal_inertia(p.mass),
                 p.rot,
                 p.mass,
-                p.pos - com,
+                centre(p) - com,
             )
         })
         .fold(Mat3::ZERO, |a, b| a + b);

@@ -222,6 +222,11 @@ pub fn prepare_bodies(
         let (com, frame) = match (dynamic, compound, item.center_of_mass) {
             (true, Some(c), _) => (c.com, c.frame),
             (true, None, Some(c)) => (c.0, Quat::IDENTITY),
+            // A cone's own centre of mass is off its origin.
+            (true, None, None) => (
+                shape.map_or(Vec3::ZERO, |s| s.center_of_mass()),
+                Quat::IDENTITY,
+            ),
             _ => (Vec3::ZERO, Quat::IDENTITY),
         };
         let input = BodyInput {
@@ -396,8 +401,10 @@ pub fn scaled_shape(entity: Entity, collider: &Collider, tf: &Transform) -> Shap
     }
     if !collider.shape.scales_exactly(tf.scale) {
         warn_once!(
-            "tumble: a sphere collider cannot scale unevenly (entity {entity}, scale {}); it \
-             takes the largest axis (further cases are not logged)",
+            "tumble: a {:?} collider cannot scale this unevenly (entity {entity}, scale {}); \
+             a sphere takes the largest axis, a capsule, cylinder or cone the larger \
+             across its axis (further cases are not logged)",
+            collider.shape.kind(),
             tf.scale
         );
     }

@@ -20,6 +20,21 @@ fn sphere_arm(c: &ColliderEntry, spin: bool, centre_of_mass: Vec3) -> Vec3 {
     }
 }
 
+/// The world axis of a turning capsule, cylinder or cone whose axis passes through its
+/// body's centre of mass (zero otherwise): turning about it leaves the shape in place.
+fn symmetry_axis(c: &ColliderEntry, spin: bool, centre_of_mass: Vec3) -> Vec3 {
+    if !spin || !matches!(c.shape, Shape::Capsule { .. } | Shape::Cylinder { .. } | Shape::Cone { .. }) {
+        return Vec3::ZERO;
+    }
+    let axis = c.rot * Vec3::Y;
+    let off_axis = (c.pos - centre_of_mass).cross(axis).length();
+    if off_axis <= 1e-4 * c.shape.thickness() {
+        axis
+    } else {
+        Vec3::ZERO
+    }
+}
+
 /// Whether a body has angular terms in a contact: it turns now or impulses can turn it.
 fn spins(b: &SolverBody) -> bool {
     b.w != Vec3::ZERO || b.inv_inertia != Mat3::ZERO
@@ -149,6 +164,10 @@ pub fn prepare_constraints(
             sphere_arm(ca, spin[0], centre(ca)),
             sphere_arm(cb, spin[1], centre(cb)),
         ];
+        let axis = [
+            symmetry_axis(ca, spin[0], centre(ca)),
+            symmetry_axis(cb, spin[1], centre(cb)),
+        ];
         let mut c = ContactConstraint {
             a: ca.body,
             b: cb.body,
@@ -161,10 +180,10 @@ pub fn prepare_constraints(
                     spin[0] && !matches!(ca.shape, Shape::Sphere { .. }),
                     spin[1] && !matches!(cb.shape, Shape::Sphere { .. }),
                 ],
-                roll: if arm == [Vec3::ZERO; 2] {
+                roll: if arm == [Vec3::ZERO; 2] && axis == [Vec3::ZERO; 2] {
                     NO_ROLL
                 } else {
-                    arms.push(arm);
+                    arms.push(RollingArms { arm, axis });
                     arms.len() as u32 - 1
                 },
             },
@@ -233,15 +252,15 @@ pub fn refresh_rows(
         let (a, b) = (body(bodies, c.a), body(bodies, c.b));
         let linear = a.inv_mass + b.inv_mass;
         let anchoring = c.anchoring;
-        let rolls = anchoring.rolls();
-        let shift = anchoring.shift(arms, &a, &b);
+        let rolls = anchoring.rolls() && arms[anchoring.roll as usize].arm != [Vec3::ZERO; 2];
+        let turned = anchoring.turned(arms, &a, &b);
         for p in c.points[..c.len].iter_mut() {
             if rolls {
                 // A sphere rolling about an off-centre centre of mass: its contact point
                 // stays under its centre, so the lever arm turns with the centre, and
                 // the rows follow it (a start-of-step arm lags the rocking and pumps it:
                 // a weeble's swing grew 20 % in three periods).
-                let (ra, rb) = anchoring.anchors(p, &a, &b, shift);
+                let (ra, rb) = anchoring.anchors(p, &turned);
                 p.normal_row = AngularRow::new(&a, &b, ra, rb, c.normal);
                 p.tangent_rows = [
                     AngularRow::new(&a, &b, ra, rb, c.tangent1),

@@ -98,7 +98,7 @@ pub fn solve(
     for c in constraints.iter_mut() {
         let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
         let anchoring = c.anchoring;
-        let shift = anchoring.shift(arms, &a, &b);
+        let turned = anchoring.turned(arms, &a, &b);
         let dp = b.dp - a.dp;
         let spin = c.spin;
         // A manifold's normal rows are coupled through its two bodies (a cube's corner
@@ -110,7 +110,7 @@ pub fn solve(
         for _ in 0..sweeps {
             let (mut largest, mut total, mut capped) = (0.0f32, 0.0f32, false);
             for p in c.points[..c.len].iter_mut() {
-                let (ca, cb) = anchoring.anchors(p, &a, &b, shift);
+                let (ca, cb) = anchoring.anchors(p, &turned);
                 let s = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
                 let (bias, mass_scale, impulse_scale) = if s > 0.0 {
                     (s * inv_h, 1.0, 0.0)
@@ -222,10 +222,10 @@ pub fn stop_approach(
     for c in constraints.iter_mut() {
         let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
         let anchoring = c.anchoring;
-        let shift = anchoring.shift(arms, &a, &b);
+        let turned = anchoring.turned(arms, &a, &b);
         let dp = b.dp - a.dp;
         for p in c.points[..c.len].iter_mut() {
-            let (ca, cb) = anchoring.anchors(p, &a, &b, shift);
+            let (ca, cb) = anchoring.anchors(p, &turned);
             let s = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
             let vn = row_velocity(&a, &b, c.normal, &p.normal_row, c.spin);
             if s > 0.0 || vn >= 0.0 {
