@@ -27,6 +27,7 @@ pub mod layers;
 pub mod limits;
 mod math;
 pub mod plugin;
+pub mod query;
 pub mod scene;
 pub mod settings;
 pub mod state_hash;
@@ -61,6 +62,9 @@ pub mod prelude {
     };
     pub use crate::layers::{CollisionLayers, LayerMask, PhysicsLayer, Sensor};
     pub use crate::plugin::{PhysicsSystems, TumblePlugin};
+    pub use crate::query::{
+        PointProjection, RayHitData, ShapeHitData, SpatialQuery, SpatialQueryFilter,
+    };
     pub use crate::settings::{Gravity, Integrator, SleepSettings, SolverSettings};
     pub use crate::timings::StepTimings;
     pub use crate::world::PhysicsWorld;

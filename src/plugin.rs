@@ -94,6 +94,7 @@ impl Plugin for TumblePlugin {
             .init_resource::<GlobalForce>()
             .init_resource::<StepTimings>()
             .init_resource::<crate::PhysicsWorld>()
+            .init_resource::<crate::query::SpatialQueryCache>()
             .init_resource::<prepare::PendingRechecks>()
             .init_resource::<prepare::SpawnCounter>()
             .add_observer(prepare::record_removal)

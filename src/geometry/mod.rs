@@ -9,6 +9,7 @@ mod box_plane;
 mod parry;
 mod polygon;
 pub(crate) mod query;
+mod ray_interval;
 mod sphere_box;
 mod sphere_plane;
 mod sphere_sphere;

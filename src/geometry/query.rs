@@ -6,10 +6,11 @@
 //! below starts inside it). A bounded plane is its rectangle, a surface with no inside.
 
 use bevy::prelude::*;
-use parry3d::query::{PointQuery, Ray, RayCast, ShapeCastOptions, ShapeCastStatus};
+use parry3d::query::{Ray, ShapeCastOptions, ShapeCastStatus};
 use parry3d::shape::{Cuboid, Shape as ParryShape};
 
 use super::parry::{Local, pose};
+use super::ray_interval;
 use crate::collider::Shape;
 
 /// Parry's shape for a query on `shape` (a bounded plane as its flat rectangle).
@@ -40,12 +41,43 @@ pub(crate) fn cast_ray(
     {
         return cast_ray_rect(h, (pos, rot), origin, dir, max_distance);
     }
+    if matches!(shape, Shape::Capsule { .. } | Shape::Cylinder { .. } | Shape::Cone { .. }) {
+        return cast_ray_round(shape, (pos, rot), origin, dir, max_distance, solid);
+    }
     let local = query_shape(shape);
     let ray = Ray::new(origin, dir);
-    local
+    let hit = local
         .shape()
-        .cast_ray_and_get_normal(&pose(pos, rot), &ray, max_distance, solid)
-        .map(|hit| (hit.time_of_impact, hit.normal))
+        .cast_ray_and_get_normal(&pose(pos, rot), &ray, max_distance, solid)?;
+    // From inside a solid: distance 0, facing back along the ray.
+    let normal = if hit.time_of_impact == 0.0 && solid { -dir } else { hit.normal };
+    Some((hit.time_of_impact, normal))
+}
+
+/// A ray against a capsule, cylinder or cone, in closed form (see [`ray_interval`]).
+fn cast_ray_round(
+    shape: &Shape,
+    (pos, rot): (Vec3, Quat),
+    origin: Vec3,
+    dir: Vec3,
+    max_distance: f32,
+    solid: bool,
+) -> Option<(f32, Vec3)> {
+    let rot = rot.normalize();
+    let inv = rot.inverse();
+    let ((t0, n0), (t1, n1)) = ray_interval::interval(shape, inv * (origin - pos), inv * dir)?;
+    if t1 < 0.0 {
+        return None;
+    }
+    let (t, normal) = if t0 >= 0.0 {
+        (t0, rot * n0)
+    } else if solid {
+        (0.0, -dir)
+    } else {
+        // From inside, out through the boundary: its normal turned to face the origin.
+        (t1, -(rot * n1))
+    };
+    (t <= max_distance).then_some((t, normal))
 }
 
 /// A ray against a bounded plane's rectangle, hit from either side (it has no inside).

@@ -296,3 +296,10 @@ pub fn snapshot(app: &mut App) -> Vec<(Entity, [u32; 13])> {
     out.sort_by_key(|(e, _)| *e);
     out
 }
+
+/// Runs `f` with a [`SpatialQuery`] over the app's last step, as a system would.
+pub fn query<R>(app: &mut App, f: impl FnOnce(&SpatialQuery) -> R) -> R {
+    let mut state = bevy::ecs::system::SystemState::<SpatialQuery>::new(app.world_mut());
+    let q = state.get(app.world()).unwrap();
+    f(&q)
+}

@@ -1,0 +1,192 @@
+//! Which colliders a query looks at: the awake colliders of the last step at their
+//! end-of-step poses, searched by a [`BoundsIndex`] built the first time a query asks
+//! after a step (a scene that never queries never builds it), and the fixed set
+//! (static colliders, sleepers) by its own index, kept by the broad phase. The
+//! brute-force walk over everything is the reference the tests hold the index to.
+
+use std::sync::RwLock;
+
+use bevy::prelude::*;
+
+use crate::world::{BoundsIndex, ColliderEntry, PhysicsWorld, STATIC};
+
+/// An awake collider at the end of the last step.
+#[derive(Clone, Copy, Debug)]
+struct AwakePose {
+    /// Index into `PhysicsWorld::colliders`.
+    collider: u32,
+    pos: Vec3,
+    rot: Quat,
+    lo: Vec3,
+    hi: Vec3,
+}
+
+/// The awake colliders' poses and boxes, and the step they are of.
+#[derive(Default, Debug)]
+pub(crate) struct AwakeIndex {
+    /// The step (`PhysicsWorld::step_count`) and collider count it was built for.
+    built_for: Option<(u64, usize)>,
+    poses: Vec<AwakePose>,
+    index: BoundsIndex,
+    /// The fixed set's boxes' union, when its own index was stale (collisions off).
+    fixed_extent: (Vec3, Vec3),
+}
+
+/// A collider a query may look at: its entry, its pose now and its box, m.
+pub(crate) struct Candidate<'a> {
+    pub entry: &'a ColliderEntry,
+    pub pose: (Vec3, Quat),
+    pub lo: Vec3,
+    pub hi: Vec3,
+}
+
+impl AwakeIndex {
+    fn is_current(&self, world: &PhysicsWorld) -> bool {
+        self.built_for == Some((world.step_count, world.colliders.len()))
+    }
+
+    fn rebuild(&mut self, world: &PhysicsWorld) {
+        self.poses.clear();
+        for (i, c) in world.colliders.iter().enumerate() {
+            // Fixed entries copied in by the broad phase are searched in the fixed set.
+            if c.body == STATIC {
+                continue;
+            }
+            let (pos, rot) = world.collider_pose(c);
+            let (lo, hi) = c.shape.aabb(pos, rot);
+            self.poses.push(AwakePose {
+                collider: i as u32,
+                pos,
+                rot,
+                lo,
+                hi,
+            });
+        }
+        let poses = &self.poses;
+        self.index
+            .rebuild(poses.len(), |i| (poses[i as usize].lo, poses[i as usize].hi));
+        self.fixed_extent = if world.fixed.is_searchable() {
+            world.fixed.extent()
+        } else {
+            finite_union(world.fixed.entries().iter().map(|c| (c.aabb_min, c.aabb_max)))
+        };
+        self.built_for = Some((world.step_count, world.colliders.len()));
+    }
+
+    /// Calls `found` with every collider whose box overlaps [lo, hi].
+    pub fn overlapping<'a>(
+        &self,
+        world: &'a PhysicsWorld,
+        lo: Vec3,
+        hi: Vec3,
+        mut found: impl FnMut(Candidate<'a>),
+    ) {
+        let poses = &self.poses;
+        let aabb = |i: u32| (poses[i as usize].lo, poses[i as usize].hi);
+        self.index.overlapping(aabb, lo, hi, |i| {
+            let p = &poses[i as usize];
+            found(Candidate {
+                entry: &world.colliders[p.collider as usize],
+                pose: (p.pos, p.rot),
+                lo: p.lo,
+                hi: p.hi,
+            })
+        });
+        let entries = world.fixed.entries();
+        let fixed = |i: u32| {
+            let c = &entries[i as usize];
+            Candidate {
+                entry: c,
+                pose: (c.pos, c.rot),
+                lo: c.aabb_min,
+                hi: c.aabb_max,
+            }
+        };
+        if world.fixed.is_searchable() {
+            world.fixed.overlapping(lo, hi, 0.0, |i| found(fixed(i)));
+        } else {
+            // Changed since the broad phase last ran (or collisions are off): every entry.
+            for i in 0..entries.len() as u32 {
+                let c = fixed(i);
+                if c.lo.cmple(hi).all() && lo.cmple(c.hi).all() {
+                    found(c);
+                }
+            }
+        }
+    }
+
+    /// Every collider, no box test: the reference the indexed walk is tested against.
+    #[cfg(test)]
+    pub fn all<'a>(&self, world: &'a PhysicsWorld, mut found: impl FnMut(Candidate<'a>)) {
+        for p in &self.poses {
+            found(Candidate {
+                entry: &world.colliders[p.collider as usize],
+                pose: (p.pos, p.rot),
+                lo: p.lo,
+                hi: p.hi,
+            });
+        }
+        for c in world.fixed.entries() {
+            found(Candidate {
+                entry: c,
+                pose: (c.pos, c.rot),
+                lo: c.aabb_min,
+                hi: c.aabb_max,
+            });
+        }
+    }
+
+    /// The union of every finite collider box, m (lo > hi when there is none): a query
+    /// along an unbounded ray or sweep need search no farther.
+    pub fn extent(&self) -> (Vec3, Vec3) {
+        let (a, b) = (self.index.extent(), self.fixed_extent);
+        (a.0.min(b.0), a.1.max(b.1))
+    }
+}
+
+/// The union of the finite boxes among `boxes`.
+fn finite_union(boxes: impl Iterator<Item = (Vec3, Vec3)>) -> (Vec3, Vec3) {
+    boxes
+        .filter(|(lo, hi)| lo.is_finite() && hi.is_finite())
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(a, b), (lo, hi)| {
+            (a.min(lo), b.max(hi))
+        })
+}
+
+/// The spatial queries' cache: the awake colliders' index, built lazily after each step.
+/// Added by [`TumblePlugin`](crate::TumblePlugin); read through
+/// [`SpatialQuery`](super::SpatialQuery).
+#[derive(Resource, Default)]
+pub struct SpatialQueryCache {
+    awake: RwLock<AwakeIndex>,
+    /// Tests: walk every collider and skip every box test (the reference).
+    #[cfg(test)]
+    pub(crate) brute_force: std::sync::atomic::AtomicBool,
+}
+
+impl SpatialQueryCache {
+    /// Whether queries check everything (tests' reference) rather than the index.
+    #[inline]
+    pub(crate) fn brute_force(&self) -> bool {
+        #[cfg(test)]
+        return self.brute_force.load(std::sync::atomic::Ordering::Relaxed);
+        #[cfg(not(test))]
+        false
+    }
+
+    /// Runs `f` with the awake index of the world's last step, building it first if the
+    /// world has stepped since.
+    pub(crate) fn with<R>(&self, world: &PhysicsWorld, f: impl FnOnce(&AwakeIndex) -> R) -> R {
+        {
+            let index = self.awake.read().unwrap_or_else(|e| e.into_inner());
+            if index.is_current(world) {
+                return f(&index);
+            }
+        }
+        let mut index = self.awake.write().unwrap_or_else(|e| e.into_inner());
+        if !index.is_current(world) {
+            index.rebuild(world);
+        }
+        f(&index)
+    }
+}
