@@ -323,7 +323,8 @@ pub fn report_collisions(
     let next = &mut world.touching;
     next.clear();
     for &(pair, contact) in now.iter() {
-        if !previous.contains_key(&pair.colliders) {
+        // A pair with a mesh can have several manifolds (one per triangle): one event.
+        if !previous.contains_key(&pair.colliders) && !next.contains_key(&pair.colliders) {
             started.write(pair.start(contact));
             trigger_both(&mut commands, pair, |p| p.start(contact));
         }

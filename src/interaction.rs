@@ -59,7 +59,7 @@ pub fn pull_dragged(
     let omega = std::f32::consts::TAU * PULL_HERTZ;
     for (e, tf, v, (mass, collider), d) in &q {
         let m = mass.map_or(1.0, |m| m.0);
-        let shape = collider.map_or(Collider::sphere(0.5).shape, |c| c.shape);
+        let shape = collider.map_or(Collider::sphere(0.5).shape, |c| c.shape.clone());
         let rot = Mat3::from_quat(tf.rotation);
         let inertia = shape.principal_inertia(m);
         let inv_i = rot * Mat3::from_diagonal(inertia.recip()) * rot.transpose();

@@ -1,11 +1,14 @@
 //! Geometry: the contact manifold of two posed shapes, by a dispatch table over shape
 //! pairs. Sphere, box and plane pairs are ours, each in its own file; every pair with a
-//! capsule, cylinder or cone goes to parry3d ([`parry`]). Plain functions without Bevy's
-//! ECS; the narrow phase and the continuous sweep call [`collide`].
+//! capsule, cylinder, cone or convex hull goes to parry3d's convex manifolds
+//! ([`parry`]), and every pair with a triangle mesh or heightfield to its composite
+//! ones, a manifold per touching triangle ([`mesh`]). Plain functions without Bevy's
+//! ECS; the narrow phase calls [`collide_each`], the continuous sweep [`collide`].
 
 mod box_box;
 mod box_frame;
 mod box_plane;
+mod mesh;
 mod parry;
 mod polygon;
 pub(crate) mod query;
@@ -19,7 +22,7 @@ use bevy::prelude::*;
 use crate::collider::{Shape, ShapeKind};
 use crate::world::{ColliderEntry, Manifold};
 
-pub(crate) use parry::unit_mass;
+pub(crate) use parry::{posed_aabb, unit_mass};
 
 /// A shape at a pose.
 #[derive(Clone, Copy, Debug)]
@@ -81,18 +84,66 @@ fn box_plane(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
 }
 
 /// The dispatch table, indexed by [`ShapeKind`] (A ≤ B). `None`: the pair never collides.
+/// Meshes and heightfields (`m`) are not in it: [`collide_each`] sends them to
+/// [`mesh`] first; their cells only mark which pairs collide.
 const DISPATCH: [[Option<CollideFn>; ShapeKind::COUNT]; ShapeKind::COUNT] = {
     let p = Some(parry::collide as CollideFn);
+    let m = Some(no_single as CollideFn);
+    let (ss, sb, sp) = (Some(sphere_sphere as CollideFn), Some(sphere_box as CollideFn), Some(sphere_plane as CollideFn));
+    let (bb, bp) = (Some(box_box as CollideFn), Some(box_plane as CollideFn));
     [
-        //   Sphere             Cuboid           Capsule Cylinder Cone Plane
-        [Some(sphere_sphere), Some(sphere_box), p, p, p, Some(sphere_plane)], // Sphere
-        [None, Some(box_box), p, p, p, Some(box_plane)],                      // Cuboid
-        [None, None, p, p, p, p],                                             // Capsule
-        [None, None, None, p, p, p],                                          // Cylinder
-        [None, None, None, None, p, p],                                       // Cone
-        [None, None, None, None, None, None],                                 // Plane (static only)
+        // Sphere Cuboid Capsule Cylinder Cone Hull TriMesh HeightField Plane
+        [ss, sb, p, p, p, p, m, m, sp],                      // Sphere
+        [None, bb, p, p, p, p, m, m, bp],                    // Cuboid
+        [None, None, p, p, p, p, m, m, p],                   // Capsule
+        [None, None, None, p, p, p, m, m, p],                // Cylinder
+        [None, None, None, None, p, p, m, m, p],             // Cone
+        [None, None, None, None, None, p, m, m, p],          // Convex hull
+        [None, None, None, None, None, None, None, None, None], // TriMesh (never moved by contact)
+        [None, None, None, None, None, None, None, None, None], // HeightField
+        [None, None, None, None, None, None, None, None, None], // Plane (static only)
     ]
 };
+
+/// The table's mark for the mesh pairs, which [`collide_each`] handles before it.
+fn no_single(_: Posed, _: Posed, _: f32, _: &mut Manifold) {}
+
+/// Whether a kind collides as a mesh of triangles (several manifolds a pair).
+#[inline]
+fn composite(kind: ShapeKind) -> bool {
+    matches!(kind, ShapeKind::TriMesh | ShapeKind::HeightField)
+}
+
+/// Collides two colliders and calls `each` with every manifold: one for convex pairs,
+/// one per touching triangle with a mesh or heightfield. Normals point from `a` to `b`.
+pub fn collide_each(
+    a: &ColliderEntry,
+    ia: u32,
+    b: &ColliderEntry,
+    ib: u32,
+    margin: f32,
+    each: &mut dyn FnMut(Manifold),
+) {
+    let (ka, kb) = (a.shape.kind(), b.shape.kind());
+    if !(composite(ka) || composite(kb)) {
+        if let Some(m) = collide(a, ia, b, ib, margin) {
+            each(m);
+        }
+        return;
+    }
+    let swap = ka > kb;
+    let (first, second) = if swap { (b, a) } else { (a, b) };
+    if DISPATCH[first.shape.kind() as usize][second.shape.kind() as usize].is_none() {
+        return;
+    }
+    mesh::collide(Posed::of(first), Posed::of(second), margin, &mut |mut m| {
+        (m.a, m.b) = if swap { (ib, ia) } else { (ia, ib) };
+        if swap {
+            m.flip();
+        }
+        each(m);
+    });
+}
 
 /// Collides two colliders, ordering them for the table. The manifold's normal points from
 /// `a` to `b` as given. Returns `None` when they don't touch within `margin`.
@@ -103,12 +154,23 @@ pub fn collide(
     ib: u32,
     margin: f32,
 ) -> Option<Manifold> {
+    if composite(a.shape.kind()) || composite(b.shape.kind()) {
+        // The deepest of its manifolds.
+        let mut deepest: Option<(f32, Manifold)> = None;
+        collide_each(a, ia, b, ib, margin, &mut |m| {
+            let d = m.points().iter().map(|p| -p.separation).fold(f32::MIN, f32::max);
+            if deepest.as_ref().is_none_or(|(best, _)| d > *best) {
+                deepest = Some((d, m));
+            }
+        });
+        return deepest.map(|(_, m)| m);
+    }
     let nudged;
     let b = match coincident_nudge(a, b) {
         Some(offset) => {
             nudged = ColliderEntry {
                 pos: b.pos + offset,
-                ..*b
+                ..b.clone()
             };
             &nudged
         }

@@ -19,21 +19,26 @@ use super::polygon::reduce;
 use crate::collider::Shape;
 use crate::world::{MAX_POINTS, Manifold};
 
-/// One of our shapes as parry's, on the stack (no allocation).
-pub(crate) enum Local {
+/// One of our shapes as parry's: the simple ones built on the stack (no allocation),
+/// the ones made of points borrowed.
+pub(crate) enum Local<'a> {
     Ball(Ball),
     Cuboid(Cuboid),
     Capsule(Capsule),
     Cylinder(Cylinder),
     Cone(Cone),
     HalfSpace(HalfSpace),
+    Shared(&'a dyn ParryShape),
 }
 
-impl Local {
+impl<'a> Local<'a> {
     /// Parry's shape for `shape`, in the same local frame (all along Y; a plane is the
     /// half-space below local +Y).
-    pub(crate) fn of(shape: &Shape) -> Self {
+    pub(crate) fn of(shape: &'a Shape) -> Self {
         match *shape {
+            Shape::ConvexHull(ref h) => Local::Shared(h.polyhedron()),
+            Shape::TriMesh(ref m) => Local::Shared(m.mesh()),
+            Shape::HeightField(ref f) => Local::Shared(f.field()),
             Shape::Sphere { radius } => Local::Ball(Ball::new(radius)),
             Shape::Cuboid { half_extents } => Local::Cuboid(Cuboid::new(half_extents)),
             Shape::Capsule {
@@ -67,8 +72,15 @@ impl Local {
             Local::Cylinder(s) => s,
             Local::Cone(s) => s,
             Local::HalfSpace(s) => s,
+            Local::Shared(s) => *s,
         }
     }
+}
+
+/// A shape's world bounding box at a pose, from parry (for the shapes made of points).
+pub(crate) fn posed_aabb(shape: &Shape, pos: Vec3, rot: Quat) -> (Vec3, Vec3) {
+    let aabb = Local::of(shape).shape().compute_aabb(&pose(pos, rot));
+    (aabb.mins, aabb.maxs)
 }
 
 /// A pose for parry (rotations normalised: parry's inverse assumes unit quaternions).
@@ -140,10 +152,10 @@ pub(super) fn collide(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
     });
 }
 
-/// A point's id from the features that touch. Parry adds one point whose features are
+/// A point's id from the features that touch (shared with the mesh pairs). Parry adds one point whose features are
 /// unknown (GJK's closest pair): it gets an id of its own, apart from every feature pair.
 #[inline]
-fn point_id(f1: PackedFeatureId, f2: PackedFeatureId, k: usize) -> u32 {
+pub(super) fn point_id(f1: PackedFeatureId, f2: PackedFeatureId, k: usize) -> u32 {
     if f1 == PackedFeatureId::UNKNOWN && f2 == PackedFeatureId::UNKNOWN {
         return u32::MAX - k as u32;
     }

@@ -14,7 +14,7 @@ use super::ray_interval;
 use crate::collider::Shape;
 
 /// Parry's shape for a query on `shape` (a bounded plane as its flat rectangle).
-fn query_shape(shape: &Shape) -> Local {
+fn query_shape(shape: &Shape) -> Local<'_> {
     match *shape {
         Shape::Plane {
             half_extents: Some(h),

@@ -173,34 +173,34 @@ mod tests {
     use super::*;
     use crate::collider::Shape;
 
-    fn run(shape: Shape, o: Vec3, d: Vec3) -> Option<(Crossing, Crossing)> {
-        interval(&shape, o, d)
+    fn run(shape: &Shape, o: Vec3, d: Vec3) -> Option<(Crossing, Crossing)> {
+        interval(shape, o, d)
     }
 
     #[test]
     fn a_line_through_the_cone_meets_its_side_and_base() {
         let cone = Shape::Cone { radius: 1.0, half_height: 1.0 };
         // Cone r = 1, h = 1 (height 2): along x at y = 0 the radius is 0.5.
-        let ((t0, n0), (t1, n1)) = run(cone, Vec3::new(-5.0, 0.0, 0.0), Vec3::X).unwrap();
+        let ((t0, n0), (t1, n1)) = run(&cone, Vec3::new(-5.0, 0.0, 0.0), Vec3::X).unwrap();
         assert!((t0 - 4.5).abs() < 1e-6 && (t1 - 5.5).abs() < 1e-6, "{t0} {t1}");
         // The side leans in by atan(r/2h): its normal is (−2, 1, 0)/√5 on the −x side.
         assert!(n0.abs_diff_eq(Vec3::new(-2.0, 1.0, 0.0) / 5f32.sqrt(), 1e-6), "{n0}");
         assert!(n1.abs_diff_eq(Vec3::new(2.0, 1.0, 0.0) / 5f32.sqrt(), 1e-6), "{n1}");
         // Straight up through the base, out at the tip.
-        let ((t0, n0), (t1, _)) = run(cone, Vec3::new(0.0, -5.0, 0.0), Vec3::Y).unwrap();
+        let ((t0, n0), (t1, _)) = run(&cone, Vec3::new(0.0, -5.0, 0.0), Vec3::Y).unwrap();
         assert!((t0 - 4.0).abs() < 1e-6 && (t1 - 6.0).abs() < 1e-5, "{t0} {t1}");
         assert_eq!(n0, Vec3::NEG_Y);
         // Above the tip, beside it: a miss (the upper cone does not count).
-        assert!(run(cone, Vec3::new(-5.0, 1.5, 0.0), Vec3::X).is_none());
+        assert!(run(&cone, Vec3::new(-5.0, 1.5, 0.0), Vec3::X).is_none());
     }
 
     #[test]
     fn a_capsule_is_its_cylinder_and_its_caps() {
         let capsule = Shape::Capsule { radius: 0.5, half_height: 1.0 };
-        let ((t, n), _) = run(capsule, Vec3::new(0.0, 5.0, 0.0), Vec3::NEG_Y).unwrap();
+        let ((t, n), _) = run(&capsule, Vec3::new(0.0, 5.0, 0.0), Vec3::NEG_Y).unwrap();
         assert!((t - 3.5).abs() < 1e-6 && n == Vec3::Y, "{t} {n}");
-        let ((t, n), (t1, _)) = run(capsule, Vec3::new(-5.0, 0.3, 0.0), Vec3::X).unwrap();
+        let ((t, n), (t1, _)) = run(&capsule, Vec3::new(-5.0, 0.3, 0.0), Vec3::X).unwrap();
         assert!((t - 4.5).abs() < 1e-6 && n.abs_diff_eq(Vec3::NEG_X, 1e-6) && (t1 - 5.5).abs() < 1e-6);
-        assert!(run(capsule, Vec3::new(-5.0, 0.0, 0.6), Vec3::X).is_none());
+        assert!(run(&capsule, Vec3::new(-5.0, 0.0, 0.6), Vec3::X).is_none());
     }
 }

@@ -203,7 +203,7 @@ mod tests {
     fn insert_replaces_and_remove_keeps_the_others_findable() {
         let mut set = FixedSet::default();
         let a = entry(1, Collider::sphere(0.5), Vec3::ZERO);
-        set.insert(a);
+        set.insert(a.clone());
         set.insert(entry(2, Collider::sphere(0.5), Vec3::X * 3.0));
         set.insert(ColliderEntry {
             pos: Vec3::X * 10.0,

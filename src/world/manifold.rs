@@ -40,6 +40,9 @@ pub(crate) struct Manifold {
     pub normal: Vec3,
     pub points: [ContactPoint; MAX_POINTS],
     pub len: usize,
+    /// Which part of the pair this is: 0, or for a pair with a triangle mesh or
+    /// heightfield the touching triangle's index (a pair can have one per triangle).
+    pub sub: u32,
     /// Combined material of the pair.
     pub friction: f32,
     pub restitution: f32,

@@ -180,7 +180,7 @@ impl ContactFilter {
 }
 
 /// One collider of this step. Dynamic and kinematic colliders point at their body.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub(crate) struct ColliderEntry {
     pub entity: Entity,
     /// The body it belongs to: itself, or for a part of a compound body the body above
@@ -240,8 +240,9 @@ pub struct PhysicsWorld {
     /// The turning arms of the few constraints with a rolling off-centre sphere
     /// (`Anchoring::roll` indexes it).
     pub(crate) rolling_arms: Vec<RollingArms>,
-    /// Last step's accumulated impulses by entity pair, for warm starting.
-    pub(crate) impulse_cache: HashMap<(Entity, Entity), Manifold>,
+    /// Last step's accumulated impulses by entity pair (and triangle, for a mesh pair:
+    /// [`Manifold::sub`]), for warm starting.
+    pub(crate) impulse_cache: HashMap<(Entity, Entity, u32), Manifold>,
     /// Sleeping bodies that an awake body touched this step: they wake.
     pub(crate) wake: Vec<Entity>,
     /// The composed transforms of this step's parented bodies' parents (uniform scale).

@@ -41,7 +41,7 @@ pub struct PartItem {
 }
 
 /// One collider of a compound body, in the body's frame.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct Part {
     pub entity: Entity,
     /// Its [`SpawnOrder`] key.
@@ -111,13 +111,14 @@ impl PartScratch {
                     .map(|d| d.0)
                     .or(body_density)
                     .unwrap_or(DEFAULT_DENSITY);
+                let mass = item.mass.map_or_else(|| shape.volume() * density, |m| m.0);
                 parts.push(Part {
                     entity,
                     key: item.order.map_or(u64::MAX - entity.to_bits(), |o| o.0),
                     shape,
                     pos: placed.translation,
                     rot: placed.rotation.normalize(),
-                    mass: item.mass.map_or(shape.volume() * density, |m| m.0),
+                    mass,
                     friction: item.friction.map_or(DEFAULT_FRICTION, |f| f.0),
                     restitution: item.restitution.map_or(0.0, |r| r.0),
                     filter: item.filter.get(),
@@ -204,7 +205,7 @@ pub fn part_entry(
         key: p.key,
         body,
         asleep: false,
-        shape: p.shape,
+        shape: p.shape.clone(),
         offset: inv * (p.pos - com),
         local_rot: (inv * p.rot).normalize(),
         pos: pos + rot * p.pos,
@@ -226,13 +227,14 @@ pub fn own_part(
     density: Option<&ColliderDensity>,
     (friction, restitution, filter): (f32, f32, ContactFilter),
 ) -> Part {
+    let mass = shape.volume() * density.map_or(DEFAULT_DENSITY, |d| d.0);
     Part {
         entity,
         key,
         shape,
         pos: Vec3::ZERO,
         rot: Quat::IDENTITY,
-        mass: shape.volume() * density.map_or(DEFAULT_DENSITY, |d| d.0),
+        mass,
         friction,
         restitution,
         filter,
@@ -269,7 +271,7 @@ mod tests {
             half_extents: Vec3::new(1.0, 0.5, 0.5),
         };
         let s = sum_parts(&[
-            part(cube, Vec3::new(-0.5, 0.0, 0.0), 1.0),
+            part(cube.clone(), Vec3::new(-0.5, 0.0, 0.0), 1.0),
             part(cube, Vec3::new(0.5, 0.0, 0.0), 1.0),
         ]);
         assert_eq!(s.mass, 2.0);

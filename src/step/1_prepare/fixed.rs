@@ -188,9 +188,9 @@ pub fn sync_fixed_set(
     recheck.dedup_by_key(|&mut (e, _)| e);
 
     for &(entity, wake) in recheck.iter() {
-        let old = world.fixed.get(entity).copied();
+        let old = world.fixed.get(entity).cloned();
         // A compound body's part that changed or left: its sleeping body wakes.
-        if let Some(o) = old.filter(|o| o.owner != entity)
+        if let Some(o) = old.as_ref().filter(|o| o.owner != entity)
             && let Ok(mut owner) = commands.get_entity(o.owner)
         {
             owner.try_remove::<Sleeping>();
@@ -224,7 +224,7 @@ pub fn sync_fixed_set(
                 continue;
             }
             if let Some(e) = unsupported(body, &frame, under_body) {
-                disturbed.extend(old.map(|c| (c.aabb_min, c.aabb_max)));
+                disturbed.extend(old.as_ref().map(|c| (c.aabb_min, c.aabb_max)));
                 world.fixed.remove(entity);
                 reject(&mut commands, entity, e);
                 continue;
@@ -234,7 +234,7 @@ pub fn sync_fixed_set(
         }
         // A sleeper woken where it lies, with its collider, needs no help: it moves, and
         // touching wakes its neighbours. Anything that leaves, jumps or changes shape does.
-        let woken_in_place = old.is_some_and(|c| {
+        let woken_in_place = old.as_ref().is_some_and(|c| {
             c.asleep
                 && !item.rejected
                 && item
@@ -243,7 +243,7 @@ pub fn sync_fixed_set(
                 && c.pos == item.transform.translation
                 && c.rot == item.transform.rotation.normalize()
         });
-        let was_asleep = old.is_some_and(|c| c.asleep);
+        let was_asleep = old.as_ref().is_some_and(|c| c.asleep);
         if wake && item.sleeping {
             commands.entity(entity).remove::<Sleeping>();
         }
@@ -257,7 +257,7 @@ pub fn sync_fixed_set(
             && (item.collider.is_some() || item.kind.is_some());
         if !belongs {
             if !woken_in_place {
-                disturbed.extend(old.map(|c| (c.aabb_min, c.aabb_max)));
+                disturbed.extend(old.as_ref().map(|c| (c.aabb_min, c.aabb_max)));
             }
             world.fixed.remove(entity);
             if item.marked {
@@ -272,25 +272,25 @@ pub fn sync_fixed_set(
                     let material = (item.friction, item.restitution, item.filter.get());
                     let entry = fixed_entry(entity, key, tf, c, material);
                     world.fixed.insert(entry(item.sleeping));
-                    let new = world.fixed.get(entity).copied();
+                    let new = world.fixed.get(entity).cloned();
                     // Moved, resized, or stopped touching some layers: what slept on it
                     // may have lost its support.
-                    if let (Some(o), Some(n)) = (old, new)
-                        && (o.pos, o.rot, o.shape, o.filter) != (n.pos, n.rot, n.shape, n.filter)
+                    if let (Some(o), Some(n)) = (&old, &new)
+                        && (o.pos, o.rot, &o.shape, o.filter) != (n.pos, n.rot, &n.shape, n.filter)
                     {
                         disturbed.push((o.aabb_min, o.aabb_max));
                         disturbed.push((n.aabb_min, n.aabb_max));
                     }
                 }
                 Err(e) => {
-                    disturbed.extend(old.map(|c| (c.aabb_min, c.aabb_max)));
+                    disturbed.extend(old.as_ref().map(|c| (c.aabb_min, c.aabb_max)));
                     world.fixed.remove(entity);
                     reject(&mut commands, entity, e);
                     continue;
                 }
             },
             None => {
-                disturbed.extend(old.map(|c| (c.aabb_min, c.aabb_max)));
+                disturbed.extend(old.as_ref().map(|c| (c.aabb_min, c.aabb_max)));
                 world.fixed.remove(entity);
             }
         }

@@ -21,7 +21,7 @@ pub(super) struct BodyInput<'a> {
     pub rot: Quat,
     pub vel: Velocity,
     pub mass: MassInput<'a>,
-    pub shape: Option<Shape>,
+    pub shape: Option<&'a Shape>,
     pub force: Option<&'a ExternalForce>,
     pub damping: Vec2,
     pub gravity_scale: f32,
@@ -34,7 +34,8 @@ pub(super) struct BodyInput<'a> {
 /// a solid ball of 0.5 m radius.
 #[inline]
 pub fn mass_properties(shape: Option<&Shape>, mass: &MassInput) -> (f32, Vec3) {
-    let shape = shape.copied().unwrap_or(Shape::Sphere { radius: 0.5 });
+    let ball = Shape::Sphere { radius: 0.5 };
+    let shape = shape.unwrap_or(&ball);
     let density = mass.density.map_or(DEFAULT_DENSITY, |d| d.0);
     let m = mass.mass.map_or(shape.volume() * density, |m| m.0);
     let inertia = mass
@@ -58,7 +59,7 @@ pub(super) fn gather_body(b: BodyInput, settings: &SolverSettings) -> (BodyState
     let dynamic = b.kind == RigidBody::Dynamic;
     let (m, inertia) = b
         .props
-        .unwrap_or_else(|| mass_properties(b.shape.as_ref(), &b.mass));
+        .unwrap_or_else(|| mass_properties(b.shape, &b.mass));
     let inv_mass = if dynamic { 1.0 / m } else { 0.0 };
     let inv_inertia = if dynamic && !b.rotation_locked {
         inertia.recip()

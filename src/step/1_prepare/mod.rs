@@ -167,14 +167,14 @@ pub fn prepare_bodies(
         if let Some(children) = item.children {
             let density = item.density.map(|d| d.0);
             scratch.collect(children, tf.scale, density, &part_items);
-            if let (Some(shape), false) = (shape, scratch.parts.is_empty()) {
+            if let (Some(shape), false) = (&shape, scratch.parts.is_empty()) {
                 let key = order_key(entity, item.order);
                 let material = (
                     item.friction.map_or(DEFAULT_FRICTION, |f| f.0),
                     item.restitution.map_or(0.0, |r| r.0),
                     item.filter.get(),
                 );
-                let own = own_part(entity, key, shape, item.density, material);
+                let own = own_part(entity, key, shape.clone(), item.density, material);
                 scratch.parts.insert(0, own);
             }
         }
@@ -222,11 +222,11 @@ pub fn prepare_bodies(
         let (com, frame) = match (dynamic, compound, item.center_of_mass) {
             (true, Some(c), _) => (c.com, c.frame),
             (true, None, Some(c)) => (c.0, Quat::IDENTITY),
-            // A cone's own centre of mass is off its origin.
-            (true, None, None) => (
-                shape.map_or(Vec3::ZERO, |s| s.center_of_mass()),
-                Quat::IDENTITY,
-            ),
+            // A cone's or a hull's own centre of mass is off its origin, and a hull's
+            // principal axes can lie any way.
+            (true, None, None) => shape.as_ref().map_or((Vec3::ZERO, Quat::IDENTITY), |s| {
+                (s.center_of_mass(), s.principal_frame())
+            }),
             _ => (Vec3::ZERO, Quat::IDENTITY),
         };
         let input = BodyInput {
@@ -252,7 +252,7 @@ pub fn prepare_bodies(
                 density: item.density,
                 inertia: item.angular_inertia,
             },
-            shape,
+            shape: shape.as_ref(),
             force: item.force,
             damping,
             gravity_scale: item.gravity_scale.map_or(1.0, |g| g.0),
@@ -290,6 +290,14 @@ pub fn prepare_bodies(
                 world.colliders.push(entry);
             }
         } else if let Some(shape) = shape {
+            // In the principal frame (turned only for a hull): the shape's centre from
+            // the centre of mass, and its rotation.
+            let (offset, local_rot) = if frame == Quat::IDENTITY {
+                (-com, Quat::IDENTITY)
+            } else {
+                let inv = frame.inverse();
+                (inv * -com, inv)
+            };
             world.colliders.push(ColliderEntry {
                 entity,
                 owner: entity,
@@ -297,8 +305,8 @@ pub fn prepare_bodies(
                 body: index,
                 asleep: false,
                 shape,
-                offset: -com,
-                local_rot: Quat::IDENTITY,
+                offset,
+                local_rot,
                 pos,
                 rot,
                 friction: item.friction.map_or(DEFAULT_FRICTION, |f| f.0),
@@ -397,7 +405,7 @@ fn validate_static(
 #[inline]
 pub fn scaled_shape(entity: Entity, collider: &Collider, tf: &Transform) -> Shape {
     if tf.scale == Vec3::ONE {
-        return collider.shape;
+        return collider.shape.clone();
     }
     if !collider.shape.scales_exactly(tf.scale) {
         warn_once!(
@@ -452,5 +460,8 @@ fn fixed_entry(
         aabb_min: Vec3::ZERO,
         aabb_max: Vec3::ZERO,
     };
-    move |asleep| ColliderEntry { asleep, ..entry }
+    move |asleep| ColliderEntry {
+        asleep,
+        ..entry.clone()
+    }
 }

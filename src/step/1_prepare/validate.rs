@@ -55,6 +55,11 @@ pub fn validate(
         if kind == RigidBody::Dynamic && matches!(shape, Shape::Plane { .. }) {
             return Err(("Collider", "a plane can only be static or kinematic".into()));
         }
+        if kind == RigidBody::Dynamic && matches!(shape, Shape::TriMesh(_) | Shape::HeightField(_)) {
+            let why = "a triangle mesh or heightfield has no inside to weigh: it can only be \
+                       static or kinematic (use a convex hull for a moving body)";
+            return Err(("Collider", why.into()));
+        }
     }
     Ok(())
 }
@@ -162,10 +167,10 @@ mod tests {
         tf: Transform,
         vel: Velocity,
         mass: Option<f32>,
-        shape: Shape,
+        shape: &Shape,
     ) -> Option<&'static str> {
         let mass = mass.map(Mass);
-        validate(&tf, &vel, RigidBody::Dynamic, mass.as_ref(), Some(&shape))
+        validate(&tf, &vel, RigidBody::Dynamic, mass.as_ref(), Some(shape))
             .err()
             .map(|e| e.0)
     }
@@ -175,33 +180,33 @@ mod tests {
         let s = Collider::sphere(1.0).shape;
         let v = Velocity::ZERO;
         assert_eq!(
-            check(Transform::from_xyz(f32::NAN, 0., 0.), v, None, s),
+            check(Transform::from_xyz(f32::NAN, 0., 0.), v, None, &s),
             Some("Transform.translation")
         );
         let bad_rot = Transform {
             rotation: Quat::from_xyzw(0., f32::INFINITY, 0., 1.),
             ..default()
         };
-        assert_eq!(check(bad_rot, v, None, s), Some("Transform.rotation"));
+        assert_eq!(check(bad_rot, v, None, &s), Some("Transform.rotation"));
         let fast = Velocity::linear(Vec3::new(0., f32::INFINITY, 0.));
         assert_eq!(
-            check(Transform::IDENTITY, fast, None, s),
+            check(Transform::IDENTITY, fast, None, &s),
             Some("Velocity.linear")
         );
-        assert_eq!(check(Transform::IDENTITY, v, Some(0.0), s), Some("Mass"));
-        assert_eq!(check(Transform::IDENTITY, v, Some(-2.0), s), Some("Mass"));
+        assert_eq!(check(Transform::IDENTITY, v, Some(0.0), &s), Some("Mass"));
+        assert_eq!(check(Transform::IDENTITY, v, Some(-2.0), &s), Some("Mass"));
         assert_eq!(
-            check(Transform::IDENTITY, v, Some(f32::NAN), s),
+            check(Transform::IDENTITY, v, Some(f32::NAN), &s),
             Some("Mass")
         );
         assert_eq!(
-            check(Transform::IDENTITY, v, None, Collider::sphere(-1.0).shape),
+            check(Transform::IDENTITY, v, None, &Collider::sphere(-1.0).shape),
             Some("Collider")
         );
         assert_eq!(
-            check(Transform::IDENTITY, v, None, Collider::plane().shape),
+            check(Transform::IDENTITY, v, None, &Collider::plane().shape),
             Some("Collider")
         );
-        assert_eq!(check(Transform::IDENTITY, v, Some(1.0), s), None);
+        assert_eq!(check(Transform::IDENTITY, v, Some(1.0), &s), None);
     }
 }

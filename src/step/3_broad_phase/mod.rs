@@ -53,15 +53,16 @@ pub fn find_pairs(
     scratch.copied.resize(world.fixed.len(), u32::MAX);
     let awake = world.colliders.len();
     for ci in 0..awake {
-        let c = world.colliders[ci];
+        let c = &world.colliders[ci];
         if c.body == STATIC {
             continue;
         }
+        let (c_min, c_max) = (c.aabb_min, c.aabb_max);
         scratch.found.clear();
         let found = &mut scratch.found;
         world
             .fixed
-            .overlapping(c.aabb_min, c.aabb_max, margin, |f| found.push(f));
+            .overlapping(c_min, c_max, margin, |f| found.push(f));
         if world.pairs.len() + found.len() > cap {
             full = true;
             break;
@@ -70,7 +71,7 @@ pub fn find_pairs(
             let slot = &mut scratch.copied[f as usize];
             if *slot == u32::MAX {
                 *slot = world.colliders.len() as u32;
-                world.colliders.push(world.fixed.entries()[f as usize]);
+                world.colliders.push(world.fixed.entries()[f as usize].clone());
             }
             world.pairs.push((ci as u32, *slot));
         }
@@ -106,10 +107,10 @@ pub fn canonical_order(colliders: &[ColliderEntry], pairs: &mut [(u32, u32)]) {
 /// Bounds over the start and free-end poses, fattened by `margin`.
 pub fn update_bounds(world: &mut PhysicsWorld, margin: f32) {
     for ci in 0..world.colliders.len() {
-        let c = world.colliders[ci];
+        let c = &world.colliders[ci];
         let (mut lo, mut hi) = c.shape.aabb(c.pos, c.rot);
         if c.body != STATIC {
-            let (p, q) = world.collider_pose(&c);
+            let (p, q) = world.collider_pose(c);
             let (lo1, hi1) = c.shape.aabb(p, q);
             (lo, hi) = (lo.min(lo1), hi.max(hi1));
         }

@@ -95,11 +95,11 @@ proptest! {
         // Insert all 500, then move every third (re-insert at a new place) and remove
         // every fifth: swap-removal must keep every other entry findable.
         for (k, c) in colliders.iter().enumerate() {
-            set.insert(ColliderEntry { entity: entity(k), owner: entity(k), ..*c });
+            set.insert(ColliderEntry { entity: entity(k), owner: entity(k), ..c.clone() });
         }
         for (k, c) in colliders.iter().enumerate().step_by(3) {
             let pos = c.pos + Vec3::new(5.0, -3.0, 2.0);
-            set.insert(ColliderEntry { entity: entity(k), owner: entity(k), pos, ..*c });
+            set.insert(ColliderEntry { entity: entity(k), owner: entity(k), pos, ..c.clone() });
         }
         for k in (0..colliders.len()).step_by(5) {
             prop_assert!(set.remove(entity(k)));

@@ -8,7 +8,7 @@
 
 use bevy::prelude::*;
 
-use crate::geometry::collide;
+use crate::geometry::{collide, collide_each};
 use crate::limits::MAX_MANIFOLDS_PER_STEP;
 use crate::settings::SolverSettings;
 use crate::world::{ColliderEntry, Manifold, PhysicsWorld, STATIC};
@@ -69,24 +69,32 @@ pub fn collide_pairs(
         };
         let reach = dt * (closing_speed(world, a) + closing_speed(world, b));
         let margin = settings.margin_for(a.shape.pair_thickness(&b.shape));
-        let Some(mut m) = collide(a, ia, b, ib, margin + reach) else {
-            continue;
-        };
-        if let Some(e) = wake {
-            world.wake.push(e);
-        }
         let (fa, ra) = a.filter.combine;
         let (fb, rb) = b.filter.combine;
-        m.friction = fa.pair(fb).apply(a.friction, b.friction).max(0.0);
-        m.restitution = ra.pair(rb).apply(a.restitution, b.restitution);
-        let (ea, eb) = (
-            world.colliders[m.a as usize].entity,
-            world.colliders[m.b as usize].entity,
-        );
-        if let Some(cached) = world.impulse_cache.get(&(ea, eb)) {
-            warm_start_from(&mut m, cached, margin);
+        let friction = fa.pair(fb).apply(a.friction, b.friction).max(0.0);
+        let restitution = ra.pair(rb).apply(a.restitution, b.restitution);
+        let (colliders, cache) = (&world.colliders, &world.impulse_cache);
+        let manifolds = &mut world.manifolds;
+        let mut found = false;
+        collide_each(a, ia, b, ib, margin + reach, &mut |mut m| {
+            found = true;
+            m.friction = friction;
+            m.restitution = restitution;
+            let key = (
+                colliders[m.a as usize].entity,
+                colliders[m.b as usize].entity,
+                m.sub,
+            );
+            if let Some(cached) = cache.get(&key) {
+                warm_start_from(&mut m, cached, margin);
+            }
+            if manifolds.len() < MAX_MANIFOLDS_PER_STEP {
+                manifolds.push(m);
+            }
+        });
+        if found && let Some(e) = wake {
+            world.wake.push(e);
         }
-        world.manifolds.push(m);
     }
     if full && !*capped {
         warn!(

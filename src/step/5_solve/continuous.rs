@@ -34,7 +34,7 @@ pub fn sweep_against_fixed(
     }
     let dt = world.dt;
     for ci in 0..world.colliders.len() {
-        let c = world.colliders[ci];
+        let c = &world.colliders[ci];
         let fixed_or_asleep = c.body == STATIC || c.asleep;
         if fixed_or_asleep || c.filter.sensor || !world.bodies[c.body as usize].is_dynamic() {
             continue;
@@ -49,6 +49,7 @@ pub fn sweep_against_fixed(
             continue;
         }
         let (dp, dq) = (s.dp, s.dq);
+        let c = c.clone();
         let slop = (CONTINUOUS_SLOP * margin).min(SLOP_OF_THICKNESS * thickness);
         let at = |t: f32| {
             let rot = (Quat::IDENTITY.slerp(dq, t) * b.q0).normalize();
@@ -59,7 +60,7 @@ pub fn sweep_against_fixed(
                 } else {
                     (rot * c.local_rot).normalize()
                 },
-                ..c
+                ..c.clone()
             }
         };
         let (lo0, hi0) = c.shape.aabb(c.pos, c.rot);

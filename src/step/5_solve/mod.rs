@@ -330,6 +330,7 @@ fn store_impulses(world: &mut PhysicsWorld) {
         let key = (
             world.colliders[m.a as usize].entity,
             world.colliders[m.b as usize].entity,
+            m.sub,
         );
         world.impulse_cache.insert(key, *m);
     }

@@ -1,10 +1,14 @@
 //! Collision shapes and the mass properties they imply.
 
+mod mesh;
+
 use bevy::prelude::*;
+
+pub use mesh::{ConvexHull, HeightFieldShape, TriMeshShape};
 
 /// The geometry of a body. Sizes are in metres, before the entity's `Transform::scale`
 /// (see [`Shape::scaled`]).
-#[derive(Component, Reflect, Clone, Copy, Debug, PartialEq)]
+#[derive(Component, Reflect, Clone, Debug, PartialEq)]
 #[reflect(Component)]
 #[require(Transform)]
 pub struct Collider {
@@ -13,7 +17,7 @@ pub struct Collider {
 }
 
 /// The shapes tumble collides. The narrow phase dispatches over pairs of these.
-#[derive(Reflect, Clone, Copy, Debug, PartialEq)]
+#[derive(Reflect, Clone, Debug, PartialEq)]
 pub enum Shape {
     /// A ball.
     Sphere {
@@ -50,6 +54,12 @@ pub enum Shape {
         /// Half the height, m.
         half_height: f32,
     },
+    /// The convex hull of a set of points. Collided by parry3d.
+    ConvexHull(ConvexHull),
+    /// A triangle mesh, for static and kinematic bodies only. Collided by parry3d.
+    TriMesh(TriMeshShape),
+    /// A heightfield, for static and kinematic bodies only. Collided by parry3d.
+    HeightField(HeightFieldShape),
     /// A static plane through the origin of its entity with normal local +Y. `half_extents`
     /// bounds it to a rectangle in local X/Z; `None` makes it infinite.
     Plane {
@@ -71,13 +81,19 @@ pub enum ShapeKind {
     Cylinder = 3,
     /// [`Shape::Cone`].
     Cone = 4,
+    /// [`Shape::ConvexHull`].
+    ConvexHull = 5,
+    /// [`Shape::TriMesh`] (from here on: shapes that never move by contact).
+    TriMesh = 6,
+    /// [`Shape::HeightField`].
+    HeightField = 7,
     /// [`Shape::Plane`] (last: planes are static only).
-    Plane = 5,
+    Plane = 8,
 }
 
 impl ShapeKind {
     /// How many kinds there are (the size of the dispatch table).
-    pub const COUNT: usize = 6;
+    pub const COUNT: usize = 9;
 }
 
 impl Collider {
@@ -124,6 +140,27 @@ impl Collider {
             },
         }
     }
+    /// The convex hull of `points` (m, local frame); `None` if they span no volume.
+    pub fn convex_hull(points: &[Vec3]) -> Option<Self> {
+        ConvexHull::from_points(points).map(|h| Self {
+            shape: Shape::ConvexHull(h),
+        })
+    }
+    /// A triangle mesh from `vertices` (m, local frame) and triangles of indices into
+    /// them, counter-clockwise seen from outside. For static and kinematic bodies.
+    pub fn trimesh(vertices: Vec<Vec3>, triangles: Vec<[u32; 3]>) -> Result<Self, String> {
+        TriMeshShape::new(vertices, triangles).map(|m| Self {
+            shape: Shape::TriMesh(m),
+        })
+    }
+    /// A heightfield: `heights[i][j]` (m, along local Y) at evenly spaced points, rows
+    /// `i` along local X and columns `j` along local Z, spanning `size` (m, X by Z)
+    /// centred on the origin. For static and kinematic bodies.
+    pub fn heightfield(heights: &[Vec<f32>], size: Vec2) -> Result<Self, String> {
+        HeightFieldShape::new(heights, size).map(|f| Self {
+            shape: Shape::HeightField(f),
+        })
+    }
     /// An infinite static plane through the entity's origin, normal along local +Y.
     pub fn plane() -> Self {
         Self {
@@ -149,6 +186,9 @@ impl Shape {
             Shape::Capsule { .. } => ShapeKind::Capsule,
             Shape::Cylinder { .. } => ShapeKind::Cylinder,
             Shape::Cone { .. } => ShapeKind::Cone,
+            Shape::ConvexHull(_) => ShapeKind::ConvexHull,
+            Shape::TriMesh(_) => ShapeKind::TriMesh,
+            Shape::HeightField(_) => ShapeKind::HeightField,
             Shape::Plane { .. } => ShapeKind::Plane,
         }
     }
@@ -183,6 +223,16 @@ impl Shape {
             Shape::Plane {
                 half_extents: Some(h),
             } if !(ok(h.x) && ok(h.y)) => Err(format!("plane half extents {h}")),
+            // Built checked; what scaling can break is their size.
+            Shape::ConvexHull(_) | Shape::TriMesh(_) | Shape::HeightField(_) => {
+                let (lo, hi) = self.aabb(Vec3::ZERO, Quat::IDENTITY);
+                let size = (hi - lo).max_element();
+                if ok(size) && lo.is_finite() && hi.is_finite() {
+                    Ok(())
+                } else {
+                    Err(format!("{:?} of size {size}", self.kind()))
+                }
+            }
             _ => Ok(()),
         }
     }
@@ -195,21 +245,35 @@ impl Shape {
             Shape::Capsule { .. } | Shape::Cylinder { .. } | Shape::Cone { .. } => {
                 crate::geometry::unit_mass(self).0
             }
-            Shape::Plane { .. } => 0.0,
+            Shape::ConvexHull(ref h) => h.volume(),
+            // Surfaces: nothing to weigh (they can only be static or kinematic).
+            Shape::TriMesh(_) | Shape::HeightField(_) | Shape::Plane { .. } => 0.0,
         }
     }
 
     /// The solid shape's centre of mass in its local frame, m: the origin but for a
-    /// cone, whose centre of mass is a quarter of its height above the base.
+    /// cone, whose centre of mass is a quarter of its height above the base, and a hull.
     #[inline]
     pub fn center_of_mass(&self) -> Vec3 {
         match *self {
             Shape::Cone { half_height, .. } => Vec3::new(0.0, -0.5 * half_height, 0.0),
+            Shape::ConvexHull(ref h) => h.center_of_mass(),
             _ => Vec3::ZERO,
         }
     }
 
-    /// Principal moments of inertia of the solid shape with the given mass, body frame.
+    /// The rotation of the shape's principal axes in its local frame: identity but for
+    /// a convex hull, whose axes can lie any way.
+    #[inline]
+    pub fn principal_frame(&self) -> Quat {
+        match *self {
+            Shape::ConvexHull(ref h) => h.principal_inertia(1.0).1,
+            _ => Quat::IDENTITY,
+        }
+    }
+
+    /// Principal moments of inertia of the solid shape with the given mass, about its
+    /// centre of mass along its [`principal_frame`](Self::principal_frame), kg·m².
     pub fn principal_inertia(&self, mass: f32) -> Vec3 {
         match *self {
             Shape::Sphere { radius } => Vec3::splat(0.4 * mass * radius * radius),
@@ -223,8 +287,9 @@ impl Shape {
                 let (volume, inertia) = crate::geometry::unit_mass(self);
                 inertia * (mass / volume)
             }
-            // A plane has no volume; a kinematic plane never needs inertia.
-            Shape::Plane { .. } => Vec3::splat(mass),
+            Shape::ConvexHull(ref h) => h.principal_inertia(mass).0,
+            // Surfaces have no volume; a kinematic one never needs inertia.
+            Shape::TriMesh(_) | Shape::HeightField(_) | Shape::Plane { .. } => Vec3::splat(mass),
         }
     }
 
@@ -233,12 +298,12 @@ impl Shape {
     /// sphere cannot scale non-uniformly: see [`scales_exactly`](Self::scales_exactly)),
     /// a capsule, cylinder or cone along Y by y and across by the larger of x and z, an
     /// infinite plane not at all.
-    pub fn scaled(self, scale: Vec3) -> Self {
+    pub fn scaled(&self, scale: Vec3) -> Self {
         let s = scale.abs();
         if s == Vec3::ONE {
-            return self;
+            return self.clone();
         }
-        match self {
+        match *self {
             Shape::Sphere { radius } => Shape::Sphere {
                 radius: radius * s.max_element(),
             },
@@ -266,6 +331,11 @@ impl Shape {
                 radius: radius * s.x.max(s.z),
                 half_height: half_height * s.y,
             },
+            // Rebuilt from scaled points (a hull on a moving body with a scale other
+            // than one is rebuilt every step: scale its points instead).
+            Shape::ConvexHull(ref h) => h.scaled(s).map_or_else(|| self.clone(), Shape::ConvexHull),
+            Shape::TriMesh(ref m) => Shape::TriMesh(m.scaled(scale)),
+            Shape::HeightField(ref f) => Shape::HeightField(f.scaled(s)),
             Shape::Plane { half_extents } => Shape::Plane {
                 half_extents: half_extents.map(|h| h * Vec2::new(s.x, s.z)),
             },
@@ -281,7 +351,11 @@ impl Shape {
             Shape::Sphere { .. } => s.x == s.y && s.y == s.z,
             Shape::Capsule { .. } => s.x == s.y && s.y == s.z,
             Shape::Cylinder { .. } | Shape::Cone { .. } => s.x == s.z,
-            Shape::Cuboid { .. } | Shape::Plane { .. } => true,
+            Shape::Cuboid { .. }
+            | Shape::Plane { .. }
+            | Shape::ConvexHull(_)
+            | Shape::TriMesh(_)
+            | Shape::HeightField(_) => true,
         }
     }
 
@@ -301,7 +375,12 @@ impl Shape {
                 radius,
                 half_height,
             } => 2.0 * radius.min(half_height),
-            Shape::Plane { .. } => f32::INFINITY,
+            Shape::ConvexHull(_) => {
+                let (lo, hi) = crate::geometry::posed_aabb(self, Vec3::ZERO, Quat::IDENTITY);
+                (hi - lo).min_element()
+            }
+            // Surfaces: as thick as what touches them.
+            Shape::TriMesh(_) | Shape::HeightField(_) | Shape::Plane { .. } => f32::INFINITY,
         }
     }
 
@@ -315,6 +394,10 @@ impl Shape {
     /// World-space bounding box at a pose, as (min, max). Infinite planes are unbounded.
     pub fn aabb(&self, pos: Vec3, rot: Quat) -> (Vec3, Vec3) {
         let half = match *self {
+            // Not centred on their origin: parry's box at the pose.
+            Shape::ConvexHull(_) | Shape::TriMesh(_) | Shape::HeightField(_) => {
+                return crate::geometry::posed_aabb(self, pos, rot);
+            }
             Shape::Sphere { radius } => Vec3::splat(radius),
             Shape::Cuboid { half_extents } => abs_rotated(rot, half_extents),
             // The segment's reach along its axis plus the ball.
