@@ -1,6 +1,7 @@
 //! Geometry: the contact manifold of two posed shapes, by a dispatch table over shape
-//! pairs. Sphere, box and plane pairs are ours, each in its own file; every pair with a
-//! capsule, cylinder, cone or convex hull goes to parry3d's convex manifolds
+//! pairs. Sphere, box and plane pairs are ours, each in its own file, and capsule–capsule
+//! (parry's missed a second point); every other pair with a capsule, cylinder, cone or
+//! convex hull goes to parry3d's convex manifolds
 //! ([`parry`]), and every pair with a triangle mesh or heightfield to its composite
 //! ones, a manifold per touching triangle ([`mesh`]). Plain functions without Bevy's
 //! ECS; the narrow phase calls [`collide_each`], the continuous sweep [`collide`].
@@ -8,6 +9,7 @@
 mod box_box;
 mod box_frame;
 mod box_plane;
+mod capsule_capsule;
 mod mesh;
 mod parry;
 mod polygon;
@@ -75,6 +77,23 @@ fn box_box(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
     box_box::collide(a, *ha, b, *hb, margin, out);
 }
 
+fn capsule_capsule(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
+    let (
+        Shape::Capsule {
+            radius: ra,
+            half_height: ha,
+        },
+        Shape::Capsule {
+            radius: rb,
+            half_height: hb,
+        },
+    ) = (a.shape, b.shape)
+    else {
+        return;
+    };
+    capsule_capsule::collide(a, (*ra, *ha), b, (*rb, *hb), margin, out);
+}
+
 fn box_plane(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
     let (Shape::Cuboid { half_extents }, Shape::Plane { half_extents: rect }) = (a.shape, b.shape)
     else {
@@ -91,11 +110,12 @@ const DISPATCH: [[Option<CollideFn>; ShapeKind::COUNT]; ShapeKind::COUNT] = {
     let m = Some(no_single as CollideFn);
     let (ss, sb, sp) = (Some(sphere_sphere as CollideFn), Some(sphere_box as CollideFn), Some(sphere_plane as CollideFn));
     let (bb, bp) = (Some(box_box as CollideFn), Some(box_plane as CollideFn));
+    let cc = Some(capsule_capsule as CollideFn);
     [
         // Sphere Cuboid Capsule Cylinder Cone Hull TriMesh HeightField Plane
         [ss, sb, p, p, p, p, m, m, sp],                      // Sphere
         [None, bb, p, p, p, p, m, m, bp],                    // Cuboid
-        [None, None, p, p, p, p, m, m, p],                   // Capsule
+        [None, None, cc, p, p, p, m, m, p],                  // Capsule
         [None, None, None, p, p, p, m, m, p],                // Cylinder
         [None, None, None, None, p, p, m, m, p],             // Cone
         [None, None, None, None, None, p, m, m, p],          // Convex hull
