@@ -14,6 +14,9 @@
 //! writeback touch the ECS. [`PhysicsWorld`] exposes counts and contacts; its arrays are
 //! the crate's own.
 
+#[cfg(feature = "bench-internals")]
+#[doc(hidden)]
+pub mod bench_api;
 pub mod body;
 pub mod collider;
 pub mod diagnostics;

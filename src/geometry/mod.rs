@@ -12,6 +12,8 @@ mod box_plane;
 mod capsule_capsule;
 mod mesh;
 mod parry;
+#[cfg(test)]
+mod parity_tests;
 mod polygon;
 pub(crate) mod query;
 mod ray_interval;
@@ -25,6 +27,8 @@ use crate::collider::{Shape, ShapeKind};
 use crate::world::{ColliderEntry, Manifold};
 
 pub(crate) use parry::{posed_aabb, unit_mass};
+#[cfg(feature = "bench-internals")]
+pub(crate) use parry::collide as parry_collide;
 
 /// A shape at a pose.
 #[derive(Clone, Copy, Debug)]
@@ -105,7 +109,7 @@ fn box_plane(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
 /// The dispatch table, indexed by [`ShapeKind`] (A ≤ B). `None`: the pair never collides.
 /// Meshes and heightfields (`m`) are not in it: [`collide_each`] sends them to
 /// [`mesh`] first; their cells only mark which pairs collide.
-const DISPATCH: [[Option<CollideFn>; ShapeKind::COUNT]; ShapeKind::COUNT] = {
+pub(crate) const DISPATCH: [[Option<CollideFn>; ShapeKind::COUNT]; ShapeKind::COUNT] = {
     let p = Some(parry::collide as CollideFn);
     let m = Some(no_single as CollideFn);
     let (ss, sb, sp) = (Some(sphere_sphere as CollideFn), Some(sphere_box as CollideFn), Some(sphere_plane as CollideFn));

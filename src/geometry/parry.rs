@@ -105,7 +105,7 @@ thread_local! {
 }
 
 /// Collides A with B through parry (B is the plane, if either is), within `margin`.
-pub(super) fn collide(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
+pub(crate) fn collide(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
     let (sa, sb) = (Local::of(a.shape), Local::of(b.shape));
     let (pa, pb) = (pose(a.pos, a.rot), pose(b.pos, b.rot));
     let rect = match *b.shape {
