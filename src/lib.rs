@@ -29,6 +29,8 @@ pub mod interpolation;
 pub mod layers;
 pub mod limits;
 mod math;
+#[cfg(feature = "mesh")]
+pub mod mesh_colliders;
 pub mod plugin;
 pub mod query;
 pub mod scene;
@@ -64,6 +66,8 @@ pub mod prelude {
         TransformInterpolationPlugin,
     };
     pub use crate::layers::{CollisionLayers, LayerMask, PhysicsLayer, Sensor};
+    #[cfg(feature = "mesh")]
+    pub use crate::mesh_colliders::{ColliderConstructor, ColliderConstructorHierarchy};
     pub use crate::plugin::{PhysicsSystems, TumblePlugin};
     pub use crate::query::{
         PointProjection, RayHitData, ShapeHitData, SpatialQuery, SpatialQueryFilter,

@@ -123,6 +123,12 @@ impl Plugin for TumblePlugin {
             .register_type::<Wind>()
             .register_type::<GlobalForce>();
 
+        // Colliders built from meshes as they load (before the frame's fixed steps).
+        #[cfg(feature = "mesh")]
+        app.register_type::<crate::mesh_colliders::ColliderConstructor>()
+            .register_type::<crate::mesh_colliders::ColliderConstructorHierarchy>()
+            .add_systems(PreUpdate, crate::mesh_colliders::construct_colliders);
+
         use PhysicsSystems as S;
         for pair in S::ORDER.windows(2) {
             app.configure_sets(FixedUpdate, pair[1].after(pair[0]));
