@@ -28,6 +28,10 @@ fn reach(shape: ShapeDesc, q: Quat, n: Vec3) -> f32 {
         ShapeDesc::Cuboid(h) => (0..3)
             .map(|i| h[i] * (q * Vec3::AXES[i]).dot(n).abs())
             .sum(),
+        ShapeDesc::Rock(r, seed) => tumble::scene::rock_points(r, seed)
+            .iter()
+            .map(|p| (q * *p).dot(n))
+            .fold(f32::MIN, f32::max),
         // Parry's support point along n (the cone's origin is midway up its axis).
         _ => {
             use parry3d::shape::SupportMap;
@@ -57,6 +61,7 @@ fn parry_shape(shape: ShapeDesc) -> parry3d::shape::SharedShape {
         ShapeDesc::Capsule(r, h) => SharedShape::capsule_y(h, r),
         ShapeDesc::Cylinder(r, h) => SharedShape::cylinder(h, r),
         ShapeDesc::Cone(r, h) => SharedShape::cone(h, r),
+        ShapeDesc::Rock(r, seed) => SharedShape::convex_hull(&tumble::scene::rock_points(r, seed)).unwrap(),
     }
 }
 
@@ -125,22 +130,31 @@ fn depths<'a>(
             Some(h) if local.x.abs() <= h.x && local.z.abs() <= h.y => local.y.abs(),
             Some(_) => return None,
         };
-        Some(reach(d.shape, q, turn * Vec3::Y) - distance)
+        // How far the body reaches toward the plane (from its side of a wall): not the
+        // same both ways for a rock.
+        let toward = if local.y >= 0.0 { -(turn * Vec3::Y) } else { turn * Vec3::Y };
+        Some(reach(d.shape, q, toward) - distance)
     })
 }
 
-/// Kinetic plus potential energy of every body, J (f64 sums: 2,000 bodies).
+/// Kinetic plus potential energy of every body, less the work its constant force (a
+/// scene's walker) has done since the start, J (f64 sums: 2,000 bodies).
 fn energy(app: &App, bodies: &[Entity], descs: &[BodyDesc]) -> f64 {
     bodies
         .iter()
         .zip(descs)
         .map(|(&b, d)| {
             let (m, v, q) = (d.mass(), vel(app, b), rot(app, b));
-            let inertia = d.collider().shape.principal_inertia(m);
-            let w = q.inverse() * v.angular;
+            let shape = d.collider().shape;
+            let inertia = shape.principal_inertia(m);
+            // In the principal frame (turned for a hull), at the centre of mass.
+            let w = (q * shape.principal_frame()).inverse() * v.angular;
+            let centre = pos(app, b) + q * shape.center_of_mass();
+            let work = d.force.dot(pos(app, b) - d.position);
             let e = 0.5 * m * v.linear.length_squared()
                 + 0.5 * w.dot(inertia * w)
-                + m * G * pos(app, b).y;
+                + m * G * centre.y
+                - work;
             e as f64
         })
         .sum()

@@ -34,6 +34,14 @@ pub fn app(scene: &SceneDesc) -> (App, Vec<Entity>) {
             let collider = match b.shape {
                 ShapeDesc::Sphere(r) => Collider::sphere(r),
                 ShapeDesc::Cuboid(h) => Collider::cuboid(2.0 * h.x, 2.0 * h.y, 2.0 * h.z),
+                // avian takes whole lengths where tumble takes halves.
+                ShapeDesc::Capsule(r, h) => Collider::capsule(r, 2.0 * h),
+                ShapeDesc::Cylinder(r, h) => Collider::cylinder(r, 2.0 * h),
+                ShapeDesc::Cone(r, h) => Collider::cone(r, 2.0 * h),
+                ShapeDesc::Rock(r, seed) => {
+                    let points = tumble::scene::rock_points(r, seed);
+                    Collider::convex_hull(points).expect("a rock spans a volume")
+                }
             };
             world
                 .spawn((

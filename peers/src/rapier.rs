@@ -42,6 +42,13 @@ pub fn app(scene: &SceneDesc) -> (App, Vec<Entity>) {
             let collider = match b.shape {
                 ShapeDesc::Sphere(r) => Collider::ball(r),
                 ShapeDesc::Cuboid(h) => Collider::cuboid(h.x, h.y, h.z),
+                ShapeDesc::Capsule(r, h) => Collider::capsule_y(h, r),
+                ShapeDesc::Cylinder(r, h) => Collider::cylinder(h, r),
+                ShapeDesc::Cone(r, h) => Collider::cone(h, r),
+                ShapeDesc::Rock(r, seed) => {
+                    let points = tumble::scene::rock_points(r, seed);
+                    Collider::convex_hull(&points).expect("a rock spans a volume")
+                }
             };
             world
                 .spawn((

@@ -262,6 +262,17 @@ impl Shape {
         }
     }
 
+    /// The triangles of a shape made of points (hull, mesh, heightfield), local frame:
+    /// vertices (m) and index triples, for drawing; `None` for the others.
+    pub fn triangles(&self) -> Option<(Vec<Vec3>, Vec<[u32; 3]>)> {
+        match *self {
+            Shape::ConvexHull(ref h) => Some(h.polyhedron().to_trimesh()),
+            Shape::TriMesh(ref m) => Some((m.mesh().vertices().to_vec(), m.mesh().indices().to_vec())),
+            Shape::HeightField(ref f) => Some(f.field().to_trimesh()),
+            _ => None,
+        }
+    }
+
     /// The rotation of the shape's principal axes in its local frame: identity but for
     /// a convex hull, whose axes can lie any way.
     #[inline]

@@ -30,6 +30,9 @@ pub struct SceneDesc {
     /// Static planes (ground, walls, ramps). Default none.
     #[serde(default)]
     pub planes: Vec<PlaneDesc>,
+    /// Static triangle meshes and heightfields (terrain, ramps). Default none.
+    #[serde(default)]
+    pub meshes: Vec<MeshDesc>,
     /// The bodies, single or in generated groups. Default none.
     #[serde(default)]
     pub bodies: Vec<BodyGroup>,
@@ -167,6 +170,74 @@ pub enum ShapeDesc {
         #[serde(deserialize_with = "check::size")] f32,
         #[serde(deserialize_with = "check::size")] f32,
     ),
+    /// A rock: the convex hull of 14 points about `radius` (m) from its centre, each
+    /// pushed in or out by up to a third, seeded by the second value.
+    Rock(#[serde(deserialize_with = "check::size")] f32, u64),
+}
+
+/// A static triangle mesh or heightfield.
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+pub enum MeshDesc {
+    /// Terrain: heights h(x, z) = `amplitude`·sin(2πx/`wavelength`)·cos(2πz/`wavelength`)
+    /// on a grid of `samples` points across `size` (m, X by Z), centred on `position`.
+    Heightfield {
+        /// The field's centre, m (world).
+        #[serde(deserialize_with = "check::position")]
+        position: Vec3,
+        /// Extent along X and Z, m.
+        size: Vec2,
+        /// Grid points along X and Z, at least 2 each.
+        samples: UVec2,
+        /// Peak height, m.
+        amplitude: f32,
+        /// Length of one wave along X and Z, m.
+        wavelength: f32,
+    },
+    /// A triangle mesh at `position`, turned by `rotation_deg` (Euler XYZ), its
+    /// triangles counter-clockwise seen from outside.
+    TriMesh {
+        /// The mesh's origin, m (world).
+        #[serde(deserialize_with = "check::position")]
+        position: Vec3,
+        /// Euler angles XYZ, degrees.
+        #[serde(default)]
+        rotation_deg: Vec3,
+        /// Vertices, m (the mesh's frame).
+        vertices: Vec<Vec3>,
+        /// Triangles: three indices into `vertices` each.
+        triangles: Vec<[u32; 3]>,
+    },
+}
+
+impl MeshDesc {
+    /// The collider and its pose.
+    pub fn collider(&self) -> Result<(Collider, Transform), String> {
+        match self {
+            MeshDesc::Heightfield { position, size, samples, amplitude, wavelength } => {
+                let (nx, nz) = (samples.x.max(2) as usize, samples.y.max(2) as usize);
+                let k = std::f32::consts::TAU / wavelength;
+                let heights: Vec<Vec<f32>> = (0..nx)
+                    .map(|i| {
+                        let x = (i as f32 / (nx - 1) as f32 - 0.5) * size.x;
+                        (0..nz)
+                            .map(|j| {
+                                let z = (j as f32 / (nz - 1) as f32 - 0.5) * size.y;
+                                amplitude * (k * x).sin() * (k * z).cos()
+                            })
+                            .collect()
+                    })
+                    .collect();
+                let c = Collider::heightfield(&heights, *size)?;
+                Ok((c, Transform::from_translation(*position)))
+            }
+            MeshDesc::TriMesh { position, rotation_deg, vertices, triangles } => {
+                let c = Collider::trimesh(vertices.clone(), triangles.clone())?;
+                let r = *rotation_deg * (std::f32::consts::PI / 180.0);
+                let rot = Quat::from_euler(EulerRot::XYZ, r.x, r.y, r.z);
+                Ok((c, Transform::from_translation(*position).with_rotation(rot)))
+            }
+        }
+    }
 }
 
 /// One body.
@@ -202,6 +273,14 @@ pub struct BodyDesc {
     /// Coefficient of restitution, 0 (no bounce) to 1; default 0.
     #[serde(deserialize_with = "check::opt_restitution")]
     pub restitution: Option<f32>,
+    /// No rotation at all (a character's capsule). Default false.
+    pub lock_rotation: bool,
+    /// A constant force on the body, N (world). Default zero.
+    #[serde(deserialize_with = "check::velocity")]
+    pub force: Vec3,
+    /// Linear drag coefficient, 1/s (with a force: a top speed of force / (mass·drag)).
+    /// Default 0.
+    pub linear_damping: f32,
 }
 
 impl BodyDesc {
@@ -220,6 +299,10 @@ impl BodyDesc {
             ShapeDesc::Capsule(r, h) => Collider::capsule(r, h),
             ShapeDesc::Cylinder(r, h) => Collider::cylinder(r, h),
             ShapeDesc::Cone(r, h) => Collider::cone(r, h),
+            ShapeDesc::Rock(r, seed) => {
+                let points = super::generate::rock_points(r, seed);
+                Collider::convex_hull(&points).unwrap_or(Collider::sphere(r))
+            }
         }
     }
 
@@ -243,6 +326,9 @@ impl Default for BodyDesc {
             density: None,
             friction: None,
             restitution: None,
+            lock_rotation: false,
+            force: Vec3::ZERO,
+            linear_damping: 0.0,
         }
     }
 }

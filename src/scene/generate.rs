@@ -16,6 +16,22 @@ impl Rng {
     }
 }
 
+/// A rock's points: 14 directions spread over the sphere (a Fibonacci lattice), each at
+/// `radius` scaled by a seeded factor in [2/3, 4/3], m.
+pub fn rock_points(radius: f32, seed: u64) -> Vec<Vec3> {
+    let mut rng = Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
+    let n = 14;
+    let golden = std::f32::consts::PI * (3.0 - 5f32.sqrt());
+    (0..n)
+        .map(|i| {
+            let y = 1.0 - 2.0 * (i as f32 + 0.5) / n as f32;
+            let ring = (1.0 - y * y).sqrt();
+            let a = golden * i as f32;
+            Vec3::new(ring * a.cos(), y, ring * a.sin()) * radius * (2.0 / 3.0 + 2.0 / 3.0 * rng.next())
+        })
+        .collect()
+}
+
 /// How many bodies a group makes, without making them.
 pub fn group_size(group: &BodyGroup) -> u64 {
     match group {

@@ -10,7 +10,7 @@ mod generate;
 mod loader;
 
 pub use desc::*;
-pub use generate::{expand_group, group_size};
+pub use generate::{expand_group, group_size, rock_points};
 #[cfg(feature = "viz")]
 pub use loader::SceneLoader;
 
@@ -110,9 +110,30 @@ impl SceneDesc {
         for plane in &self.planes {
             commands.spawn(plane_bundle(plane));
         }
+        for mesh in &self.meshes {
+            match mesh.collider() {
+                Ok((collider, tf)) => {
+                    commands.spawn((SceneEntity, Name::new("mesh"), collider, tf));
+                }
+                Err(why) => error!("tumble: scene {:?}: a mesh is left out: {why}", self.name),
+            }
+        }
         self.expanded_bodies()
             .iter()
-            .map(|b| commands.spawn(body_bundle(b)).id())
+            .map(|b| {
+                let mut e = commands.spawn(body_bundle(b));
+                // Only what a body asks for: a component no one needs costs the gather.
+                if b.lock_rotation {
+                    e.insert(crate::effects::LockRotation);
+                }
+                if b.force != Vec3::ZERO {
+                    e.insert(ExternalForce::new(b.force));
+                }
+                if b.linear_damping != 0.0 {
+                    e.insert(LinearDamping(b.linear_damping));
+                }
+                e.id()
+            })
             .collect()
     }
 

@@ -75,6 +75,11 @@ fn add_body_meshes(
                 radius,
                 half_height,
             } => (Cone::new(radius, 2.0 * half_height).into(), None),
+            Shape::ConvexHull(_) | Shape::TriMesh(_) | Shape::HeightField(_) => {
+                let (v, t) = collider.shape.triangles().unwrap_or_default();
+                let tint = (!dynamic).then(|| Color::srgb(0.45, 0.5, 0.4));
+                (flat_mesh(&v, &t), tint)
+            }
             Shape::Plane { half_extents } => {
                 let h = half_extents.unwrap_or(Vec2::splat(40.0));
                 let tint = if half_extents.is_some() {
@@ -117,4 +122,24 @@ fn add_body_meshes(
             entity.insert(Pickable::IGNORE);
         }
     }
+}
+
+/// A flat-shaded mesh of triangles (each its own three vertices and face normal).
+fn flat_mesh(vertices: &[Vec3], triangles: &[[u32; 3]]) -> Mesh {
+    let mut positions = Vec::with_capacity(triangles.len() * 3);
+    let mut normals = Vec::with_capacity(triangles.len() * 3);
+    for t in triangles {
+        let [a, b, c] = t.map(|i| vertices[i as usize]);
+        let n = (b - a).cross(c - a).normalize_or(Vec3::Y);
+        for p in [a, b, c] {
+            positions.push(p.to_array());
+            normals.push(n.to_array());
+        }
+    }
+    Mesh::new(
+        bevy::mesh::PrimitiveTopology::TriangleList,
+        bevy::asset::RenderAssetUsages::default(),
+    )
+    .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, positions)
+    .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, normals)
 }

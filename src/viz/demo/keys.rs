@@ -45,6 +45,7 @@ fn handle_keys(
         KeyCode::Digit7,
         KeyCode::Digit8,
         KeyCode::Digit9,
+        KeyCode::Digit0,
     ];
     for (i, key) in digits.iter().enumerate() {
         if keys.just_pressed(*key) && i < scenes.handles.len() {

@@ -34,7 +34,8 @@ pub struct DemoScenes {
 #[derive(Message, Clone, Copy, Debug)]
 pub struct SwitchScene(pub usize);
 
-/// The scene files in `assets/scenes`, sorted: their order is the number keys'.
+/// The scene files in `assets/scenes`, sorted by their number (`10_…` after `9_…`):
+/// their order is the number keys' (1–9, then 0 for the tenth).
 pub fn scene_file_names() -> Vec<String> {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
     let mut names: Vec<String> = std::fs::read_dir(&dir)
@@ -45,7 +46,9 @@ pub fn scene_file_names() -> Vec<String> {
                 .collect()
         })
         .unwrap_or_default();
-    names.sort();
+    // By the leading number, then by name.
+    let number = |n: &String| n.split('_').next().and_then(|d| d.parse::<u32>().ok());
+    names.sort_by(|a, b| (number(a), a).cmp(&(number(b), b)));
     names
 }
 
