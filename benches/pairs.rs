@@ -8,37 +8,11 @@ use std::hint::black_box;
 use std::time::Instant;
 
 use bevy::prelude::*;
-use tumble::bench_api::{Implementation, collide};
+use tumble::bench_api::{Implementation, Rnd, collide};
 use tumble::collider::Shape;
 
 const POSES: usize = 2000;
 const ROUNDS: usize = 15;
-
-/// xorshift64.
-struct Rnd(u64);
-
-impl Rnd {
-    fn unit(&mut self) -> f32 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.unit()
-    }
-    fn dir(&mut self) -> Vec3 {
-        loop {
-            let v = Vec3::new(self.range(-1.0, 1.0), self.range(-1.0, 1.0), self.range(-1.0, 1.0));
-            if v.length_squared() > 0.01 && v.length_squared() <= 1.0 {
-                return v.normalize();
-            }
-        }
-    }
-    fn rot(&mut self) -> Quat {
-        Quat::from_axis_angle(self.dir(), self.range(0.0, 6.3))
-    }
-}
 
 type Pose = (Shape, Vec3, Quat);
 

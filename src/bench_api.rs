@@ -8,6 +8,8 @@ use crate::collider::Shape;
 use crate::geometry::{DISPATCH, Posed, parry_collide};
 use crate::world::Manifold;
 
+pub use crate::rng::Rnd;
+
 /// Which implementation collides the pair.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Implementation {

@@ -31,7 +31,11 @@ pub mod limits;
 mod math;
 #[cfg(feature = "mesh")]
 pub mod mesh_colliders;
+#[cfg(feature = "picking")]
+pub mod picking;
 pub mod plugin;
+#[cfg(any(test, feature = "bench-internals"))]
+mod rng;
 pub mod query;
 pub mod scene;
 pub mod settings;

@@ -7,32 +7,15 @@ use bevy::prelude::*;
 
 use super::{DISPATCH, Posed, parry};
 use crate::collider::Shape;
+use crate::rng::Rnd;
 use crate::world::Manifold;
 
-/// xorshift64: seeded poses.
-struct Rnd(u64);
+/// Random shapes of the three hand-written kinds.
+trait RandomShape {
+    fn shape(&mut self, kind: u32) -> Shape;
+}
 
-impl Rnd {
-    fn unit(&mut self) -> f32 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.unit()
-    }
-    fn dir(&mut self) -> Vec3 {
-        loop {
-            let v = Vec3::new(self.range(-1.0, 1.0), self.range(-1.0, 1.0), self.range(-1.0, 1.0));
-            if v.length_squared() > 0.01 && v.length_squared() <= 1.0 {
-                return v.normalize();
-            }
-        }
-    }
-    fn rot(&mut self) -> Quat {
-        Quat::from_axis_angle(self.dir(), self.range(0.0, 6.3))
-    }
+impl RandomShape for Rnd {
     fn shape(&mut self, kind: u32) -> Shape {
         match kind {
             0 => Shape::Sphere { radius: self.range(0.1, 1.0) },

@@ -13,24 +13,16 @@ use crate::body::RigidBody;
 use crate::collider::Collider;
 use crate::effects::Effects;
 use crate::layers::{CollisionLayers, LayerMask, Sensor};
+use crate::rng::Rnd;
 
-/// xorshift64: a seeded source for the scenes.
-struct Rnd(u64);
+/// Random colliders of the convex kinds.
+trait RandomCollider {
+    fn collider(&mut self) -> Collider;
+    fn rot_xyz(&mut self) -> Quat;
+}
 
-impl Rnd {
-    fn unit(&mut self) -> f32 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.unit()
-    }
-    fn vec(&mut self, lo: f32, hi: f32) -> Vec3 {
-        Vec3::new(self.range(lo, hi), self.range(lo, hi), self.range(lo, hi))
-    }
-    fn rot(&mut self) -> Quat {
+impl RandomCollider for Rnd {
+    fn rot_xyz(&mut self) -> Quat {
         Quat::from_euler(EulerRot::XYZ, self.range(0.0, 6.3), self.range(0.0, 6.3), self.range(0.0, 6.3))
     }
     fn collider(&mut self) -> Collider {
@@ -55,7 +47,7 @@ fn scene(seed: u64) -> App {
     world.spawn((Collider::plane(), Transform::default()));
     for i in 0..120 {
         let pos = rnd.vec(-15.0, 15.0).with_y(rnd.range(0.5, 12.0));
-        let tf = Transform::from_translation(pos).with_rotation(rnd.rot());
+        let tf = Transform::from_translation(pos).with_rotation(rnd.rot_xyz());
         let layers = CollisionLayers::from_bits(1 << (i % 3), u32::MAX);
         let mut e = if rnd.unit() < 0.3 {
             let fixed = if rnd.unit() < 0.3 {
@@ -107,7 +99,7 @@ fn indexed_queries_answer_what_brute_force_answers() {
             let solid = rnd.unit() < 0.5;
             let f = filter(&mut rnd);
             let shape = rnd.collider();
-            let rot = rnd.rot();
+            let rot = rnd.rot_xyz();
             let lo = rnd.vec(-15.0, 15.0);
             let hi = lo + rnd.vec(0.0, 6.0);
             let mut ask = |world: &mut World, brute: bool| {

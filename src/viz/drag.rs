@@ -1,7 +1,7 @@
 //! Mouse interaction through bevy_picking: press on a body to select it, drag to pull it
 //! with a critically damped spring towards the cursor on a plane facing the camera (the
-//! body keeps colliding while dragged), release to throw. Needs a picking backend such as
-//! `MeshPickingPlugin`. While a body is held, the orbit camera is paused. The spring itself
+//! body keeps colliding while dragged), release to throw. Needs a picking backend: the demo
+//! uses tumble's own, [`PhysicsPickingPlugin`](crate::picking::PhysicsPickingPlugin). While a body is held, the orbit camera is paused. The spring itself
 //! is [`crate::interaction::pull_dragged`], tested headless.
 
 use bevy::prelude::*;

@@ -9,7 +9,6 @@ mod stats;
 mod tour;
 
 use bevy::ecs::schedule::SingleThreadedExecutor;
-use bevy::picking::mesh_picking::MeshPickingPlugin;
 use bevy::prelude::*;
 use bevy_egui::{EguiPlugin, EguiPrimaryContextPass};
 use bevy_panorbit_camera::PanOrbitCameraPlugin;
@@ -30,7 +29,7 @@ pub use crate::diagnostics::stage_path;
 impl Plugin for DemoPlugin {
     fn build(&self, app: &mut App) {
         app.add_plugins((
-            MeshPickingPlugin,
+            crate::picking::PhysicsPickingPlugin,
             EguiPlugin::default(),
             PanOrbitCameraPlugin,
             BodyMeshPlugin,
