@@ -4,7 +4,8 @@
 //! `cargo run --release --features viz --example demo`
 //!
 //! With `TUMBLE_TOUR=<dir>` it visits every scene instead, saves a screenshot of each to
-//! `<dir>/<scene>.png` and exits (see `scripts/screenshots.sh`).
+//! `<dir>/<scene>.png` and exits (see `scripts/screenshots.sh`); `TUMBLE_TOUR_ONLY=<text>`
+//! visits only the scenes whose file name contains it.
 
 use bevy::prelude::*;
 use tumble::prelude::*;
@@ -32,7 +33,8 @@ fn main() {
     )
     .add_plugins((TumblePlugin::default(), DemoPlugin));
     if let Ok(dir) = std::env::var("TUMBLE_TOUR") {
-        app.add_plugins(tour_plugin(dir.into()));
+        let only = std::env::var("TUMBLE_TOUR_ONLY").ok();
+        app.add_plugins(tour_plugin(dir.into(), only));
     }
     app.run();
 }
