@@ -138,6 +138,13 @@ fn composite(kind: ShapeKind) -> bool {
     matches!(kind, ShapeKind::TriMesh | ShapeKind::HeightField)
 }
 
+/// Whether a pair has a mesh or heightfield in it: [`collide_each`] is needed, not
+/// [`collide`].
+#[inline]
+pub fn has_mesh(a: &Shape, b: &Shape) -> bool {
+    composite(a.kind()) || composite(b.kind())
+}
+
 /// Collides two colliders and calls `each` with every manifold: one for convex pairs,
 /// one per touching triangle with a mesh or heightfield. Normals point from `a` to `b`.
 pub fn collide_each(

@@ -234,15 +234,13 @@ impl Anchoring {
         self.roll != NO_ROLL
     }
 
-    /// How this constraint's anchors move with the bodies' turn so far this step. Once
-    /// per constraint, not per point.
+    /// How this constraint's anchors move with the bodies' turn so far this step, when
+    /// a rolling motion applies (`None`: they turn with their bodies). Once per
+    /// constraint, not per point.
     #[inline]
-    pub(crate) fn turned(&self, arms: &[RollingArms], a: &SolverBody, b: &SolverBody) -> Turned {
+    pub(crate) fn turned(&self, arms: &[RollingArms], a: &SolverBody, b: &SolverBody) -> Option<Turned> {
         if !self.rolls() {
-            return Turned {
-                rot: [a.dq, b.dq],
-                shift: [Vec3::ZERO; 2],
-            };
+            return None;
         }
         let m = arms[self.roll as usize];
         let side = |dq: Quat, arm: Vec3, axis: Vec3| {
@@ -251,16 +249,28 @@ impl Anchoring {
         };
         let (ra, sa) = side(a.dq, m.arm[0], m.axis[0]);
         let (rb, sb) = side(b.dq, m.arm[1], m.axis[1]);
-        Turned {
+        Some(Turned {
             rot: [ra, rb],
             shift: [sa, sb],
-        }
+        })
     }
 
     /// Point `p`'s anchors on A and B now, from the bodies' start-of-step centres, with
-    /// this constraint's [`turned`](Self::turned).
+    /// this constraint's [`turned`](Self::turned). Without a rolling motion (nearly
+    /// every contact) the anchors turn with the bodies or stay, as before any of this.
     #[inline]
-    pub(crate) fn anchors(&self, p: &ConstraintPoint, t: &Turned) -> (Vec3, Vec3) {
+    pub(crate) fn anchors(
+        &self,
+        p: &ConstraintPoint,
+        a: &SolverBody,
+        b: &SolverBody,
+        t: &Option<Turned>,
+    ) -> (Vec3, Vec3) {
+        let Some(t) = t else {
+            let ca = if self.turn[0] { a.dq * p.ra } else { p.ra };
+            let cb = if self.turn[1] { b.dq * p.rb } else { p.rb };
+            return (ca, cb);
+        };
         let ca = if self.turn[0] { t.rot[0] * p.ra } else { p.ra + t.shift[0] };
         let cb = if self.turn[1] { t.rot[1] * p.rb } else { p.rb + t.shift[1] };
         (ca, cb)

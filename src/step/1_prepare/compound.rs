@@ -153,9 +153,10 @@ pub fn sum_parts(parts: &[Part]) -> Summed {
     let tensor = parts
         .iter()
         .map(|p| {
+            // A hull's moments lie along its own principal axes.
             part_tensor(
                 p.shape.principal_inertia(p.mass),
-                p.rot,
+                p.rot * p.shape.principal_frame(),
                 p.mass,
                 centre(p) - com,
             )
@@ -286,5 +287,30 @@ mod tests {
             "{} vs {expected}",
             s.moments
         );
+    }
+
+    #[test]
+    fn a_hull_part_turns_with_its_own_axes() {
+        // A long box's hull turned 30° about z, as the only part: the sum is the box's
+        // inertia turned by those 30°, whatever frame the hull's own axes came out in.
+        let h = Vec3::new(0.6, 0.1, 0.2);
+        let turn = Quat::from_rotation_z(0.5236);
+        let corners: Vec<Vec3> = (0..8)
+            .map(|i| {
+                let s = Vec3::new(
+                    if i & 1 == 0 { -1.0 } else { 1.0 },
+                    if i & 2 == 0 { -1.0 } else { 1.0 },
+                    if i & 4 == 0 { -1.0 } else { 1.0 },
+                );
+                turn * (s * h)
+            })
+            .collect();
+        let hull = crate::collider::Collider::convex_hull(&corners).unwrap().shape;
+        let s = sum_parts(&[part(hull, Vec3::ZERO, 3.0)]);
+        let box_inertia = Shape::Cuboid { half_extents: h }.principal_inertia(3.0);
+        let expected = Mat3::from_quat(turn) * Mat3::from_diagonal(box_inertia) * Mat3::from_quat(turn).transpose();
+        let got = Mat3::from_quat(s.frame) * Mat3::from_diagonal(s.moments) * Mat3::from_quat(s.frame).transpose();
+        let diff = got - expected;
+        assert!(diff.to_cols_array().iter().all(|x| x.abs() < 1e-4), "{got} vs {expected}");
     }
 }

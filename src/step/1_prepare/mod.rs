@@ -224,9 +224,12 @@ pub fn prepare_bodies(
             (true, None, Some(c)) => (c.0, Quat::IDENTITY),
             // A cone's or a hull's own centre of mass is off its origin, and a hull's
             // principal axes can lie any way.
-            (true, None, None) => shape.as_ref().map_or((Vec3::ZERO, Quat::IDENTITY), |s| {
-                (s.center_of_mass(), s.principal_frame())
-            }),
+            (true, None, None) => match shape {
+                Some(ref s @ (Shape::Cone { .. } | Shape::ConvexHull(_))) => {
+                    (s.center_of_mass(), s.principal_frame())
+                }
+                _ => (Vec3::ZERO, Quat::IDENTITY),
+            },
             _ => (Vec3::ZERO, Quat::IDENTITY),
         };
         let input = BodyInput {

@@ -8,7 +8,7 @@
 
 use bevy::prelude::*;
 
-use crate::geometry::{collide, collide_each};
+use crate::geometry::{collide, collide_each, has_mesh};
 use crate::limits::MAX_MANIFOLDS_PER_STEP;
 use crate::settings::SolverSettings;
 use crate::world::{ColliderEntry, Manifold, PhysicsWorld, STATIC};
@@ -69,17 +69,15 @@ pub fn collide_pairs(
         };
         let reach = dt * (closing_speed(world, a) + closing_speed(world, b));
         let margin = settings.margin_for(a.shape.pair_thickness(&b.shape));
-        let (fa, ra) = a.filter.combine;
-        let (fb, rb) = b.filter.combine;
-        let friction = fa.pair(fb).apply(a.friction, b.friction).max(0.0);
-        let restitution = ra.pair(rb).apply(a.restitution, b.restitution);
         let (colliders, cache) = (&world.colliders, &world.impulse_cache);
         let manifolds = &mut world.manifolds;
         let mut found = false;
-        collide_each(a, ia, b, ib, margin + reach, &mut |mut m| {
+        let mut take = |mut m: Manifold| {
             found = true;
-            m.friction = friction;
-            m.restitution = restitution;
+            let (fa, ra) = a.filter.combine;
+            let (fb, rb) = b.filter.combine;
+            m.friction = fa.pair(fb).apply(a.friction, b.friction).max(0.0);
+            m.restitution = ra.pair(rb).apply(a.restitution, b.restitution);
             let key = (
                 colliders[m.a as usize].entity,
                 colliders[m.b as usize].entity,
@@ -91,7 +89,14 @@ pub fn collide_pairs(
             if manifolds.len() < MAX_MANIFOLDS_PER_STEP {
                 manifolds.push(m);
             }
-        });
+        };
+        // Convex pairs (nearly all) without the indirect call a mesh's several manifolds
+        // need.
+        if has_mesh(&a.shape, &b.shape) {
+            collide_each(a, ia, b, ib, margin + reach, &mut take);
+        } else if let Some(m) = collide(a, ia, b, ib, margin + reach) {
+            take(m);
+        }
         if found && let Some(e) = wake {
             world.wake.push(e);
         }

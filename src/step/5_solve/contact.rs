@@ -260,7 +260,7 @@ pub fn refresh_rows(
                 // stays under its centre, so the lever arm turns with the centre, and
                 // the rows follow it (a start-of-step arm lags the rocking and pumps it:
                 // a weeble's swing grew 20 % in three periods).
-                let (ra, rb) = anchoring.anchors(p, &turned);
+                let (ra, rb) = anchoring.anchors(p, &a, &b, &turned);
                 p.normal_row = AngularRow::new(&a, &b, ra, rb, c.normal);
                 p.tangent_rows = [
                     AngularRow::new(&a, &b, ra, rb, c.tangent1),

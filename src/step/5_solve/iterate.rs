@@ -6,7 +6,7 @@
 use bevy::prelude::*;
 
 use crate::world::{
-    AngularRow, ContactConstraint, RollingArms, SolverBody, body, row_velocity, store,
+    AngularRow, ContactConstraint, MAX_POINTS, RollingArms, SolverBody, body, row_velocity, store,
 };
 
 /// Linear impulse `p` on b and −p on a, with the angular parts `ang_a`, `ang_b`
@@ -107,11 +107,16 @@ pub fn solve(
         // of their sum, at most NORMAL_SWEEPS times; not when a row is held at the
         // push-out cap (a shared rate limit: converged, the shares add up).
         let sweeps = if c.len > 1 { NORMAL_SWEEPS } else { 1 };
+        // Each point's separation now: the same in every sweep (positions move only
+        // between substeps), so measured once.
+        let mut separation = [0.0f32; MAX_POINTS];
+        for (s, p) in separation.iter_mut().zip(&c.points[..c.len]) {
+            let (ca, cb) = anchoring.anchors(p, &a, &b, &turned);
+            *s = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
+        }
         for _ in 0..sweeps {
             let (mut largest, mut total, mut capped) = (0.0f32, 0.0f32, false);
-            for p in c.points[..c.len].iter_mut() {
-                let (ca, cb) = anchoring.anchors(p, &turned);
-                let s = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
+            for (p, &s) in c.points[..c.len].iter_mut().zip(&separation) {
                 let (bias, mass_scale, impulse_scale) = if s > 0.0 {
                     (s * inv_h, 1.0, 0.0)
                 } else if use_bias {
@@ -225,7 +230,7 @@ pub fn stop_approach(
         let turned = anchoring.turned(arms, &a, &b);
         let dp = b.dp - a.dp;
         for p in c.points[..c.len].iter_mut() {
-            let (ca, cb) = anchoring.anchors(p, &turned);
+            let (ca, cb) = anchoring.anchors(p, &a, &b, &turned);
             let s = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
             let vn = row_velocity(&a, &b, c.normal, &p.normal_row, c.spin);
             if s > 0.0 || vn >= 0.0 {
