@@ -238,6 +238,7 @@ impl Shape {
     }
 
     /// Volume in m³ (0 for planes, which can only be static).
+    #[inline]
     pub fn volume(&self) -> f32 {
         match *self {
             Shape::Sphere { radius } => 4.0 / 3.0 * std::f32::consts::PI * radius.powi(3),
@@ -285,6 +286,7 @@ impl Shape {
 
     /// Principal moments of inertia of the solid shape with the given mass, about its
     /// centre of mass along its [`principal_frame`](Self::principal_frame), kg·m².
+    #[inline]
     pub fn principal_inertia(&self, mass: f32) -> Vec3 {
         match *self {
             Shape::Sphere { radius } => Vec3::splat(0.4 * mass * radius * radius),

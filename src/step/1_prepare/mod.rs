@@ -162,8 +162,11 @@ pub fn prepare_bodies(
         }
         let vel = item.velocity.copied().unwrap_or(Velocity::ZERO);
         let shape = item.collider.map(|c| scaled_shape(entity, c, &tf));
-        // Colliders on its children make it a compound body.
-        scratch.parts.clear();
+        // Colliders on its children make it a compound body. (Cleared only when used:
+        // parts hold shapes, so clearing runs their drop even when empty.)
+        if !scratch.parts.is_empty() {
+            scratch.parts.clear();
+        }
         if let Some(children) = item.children {
             let density = item.density.map(|d| d.0);
             scratch.collect(children, tf.scale, density, &part_items);
