@@ -2,14 +2,17 @@
 //!
 //! Each collider's box is swept over the body's free motion this step (start pose and
 //! free end pose) and fattened by the speculative margin, so a fast body meets what lies
-//! in its path. Sweep-and-prune finds the overlaps; the brute-force O(n²) search is kept
-//! as the reference it is tested against.
+//! in its path. A bounding-volume tree kept between steps (parry3d's) finds the awake
+//! overlaps ([`tree`]); our sweep and prune, which it replaced, and the brute-force O(n²)
+//! search are kept as the references it is tested against.
 
 #[cfg(test)]
 mod brute_force;
 #[cfg(test)]
 mod parity_tests;
+#[cfg(any(test, feature = "bench-internals"))]
 mod sweep_and_prune;
+mod tree;
 
 use bevy::prelude::*;
 
@@ -19,13 +22,15 @@ use crate::world::{ColliderEntry, PhysicsWorld, STATIC};
 
 #[cfg(test)]
 use brute_force::brute_force_pairs;
+#[cfg(any(test, feature = "bench-internals"))]
 pub use sweep_and_prune::SweepAndPrune;
+use tree::AwakeTree;
 
 /// Buffers kept between steps: the sweep's order and, per fixed entry, its index in this
 /// step's collider list (`u32::MAX` when not copied).
 #[derive(Default)]
 pub struct BroadPhaseScratch {
-    sap: SweepAndPrune,
+    tree: AwakeTree,
     copied: Vec<u32>,
     found: Vec<u32>,
     /// The pair cap was hit last step (warn once per episode).
@@ -46,7 +51,7 @@ pub fn find_pairs(
     let margin = settings.speculative_margin;
     update_bounds(world, margin);
     let cap = MAX_PAIRS_PER_STEP;
-    let mut full = scratch.sap.pairs(&world.colliders, &mut world.pairs, cap);
+    let mut full = scratch.tree.pairs(&world.colliders, &mut world.pairs, cap);
 
     world.fixed.update_search();
     scratch.copied.clear();

@@ -3,6 +3,7 @@
 //! the fixed set, after random inserts, moves and removals, finds exactly what testing
 //! every entry finds.
 
+use super::tree::AwakeTree;
 use super::{SweepAndPrune, brute_force_pairs};
 use crate::collider::Shape;
 use crate::world::{ColliderEntry, FixedSet, STATIC};
@@ -115,6 +116,33 @@ proptest! {
             set.overlapping(lo, hi, 0.02, |i| fast.push(i));
             fast.sort_unstable();
             prop_assert_eq!(fast, set.overlapping_brute_force(lo, hi, 0.02));
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(30))]
+    /// The tree, over successive steps: moved boxes (refit), then fewer colliders (built
+    /// afresh), then moved again: every time exactly the reference pairs.
+    #[test]
+    fn tree_matches_brute_force_over_steps(seed in any::<u64>()) {
+        let mut colliders = scene(seed);
+        let mut tree = AwakeTree::default();
+        let (mut reference, mut fast) = (Vec::new(), Vec::new());
+        for step in 0..4 {
+            if step == 2 {
+                colliders.truncate(350);
+            }
+            for (k, c) in colliders.iter_mut().enumerate() {
+                let shift = bevy::prelude::Vec3::new(((k + step) % 5) as f32 - 2.0, 0.1, -0.2) * 0.2;
+                c.aabb_min += shift;
+                c.aabb_max += shift;
+            }
+            brute_force_pairs(&colliders, &mut reference);
+            tree.pairs(&colliders, &mut fast, usize::MAX);
+            fast.sort_unstable();
+            prop_assert!(!reference.is_empty());
+            prop_assert_eq!(&reference, &fast, "step {}", step);
         }
     }
 }
