@@ -19,8 +19,11 @@ use crate::prelude::*;
 /// One point of the sweep.
 #[derive(Clone, Copy, Debug)]
 pub struct Config {
+    /// The free-motion integrator.
     pub integrator: Integrator,
+    /// Fixed steps per second, Hz.
     pub hz: f64,
+    /// Contact solver substeps per step.
     pub substeps: u32,
     /// Solver passes per substep (at least; heavy loads add more, see `iterations_for`).
     pub iterations: u32,
@@ -29,8 +32,11 @@ pub struct Config {
 /// A result row.
 #[derive(Clone, Debug)]
 pub struct Row {
+    /// The scenario's name (see [`SCENARIOS`]).
     pub scenario: &'static str,
+    /// The sweep point it ran at.
     pub config: Config,
+    /// What it measured.
     pub measure: Measure,
     /// Median CPU seconds per simulated second.
     pub cost: f64,

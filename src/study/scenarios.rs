@@ -10,19 +10,25 @@ use crate::prelude::*;
 /// What a run measured. Errors are in the scenario's own unit (see [`SCENARIOS`]).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Measure {
+    /// The error at the end of the run.
     pub error_final: f64,
+    /// The largest error during the run.
     pub error_max: f64,
     /// Relative change of the conserved energy over the run (0 where none is conserved).
     pub energy_drift: f64,
 }
 
+/// One scenario of the study: a run with an exact reference.
 pub struct Scenario {
+    /// Its name in the CSV and the plots.
     pub name: &'static str,
     /// What the error is.
     pub unit: &'static str,
+    /// Runs it at a sweep point: what it measured, and CPU seconds per simulated second.
     pub run: fn(Config) -> (Measure, f64),
 }
 
+/// Every scenario, in the order of the CSV.
 pub const SCENARIOS: &[Scenario] = &[
     Scenario {
         name: "projectile",
