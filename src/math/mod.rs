@@ -10,7 +10,7 @@ mod frames;
 mod gyroscopic;
 mod principal;
 mod rk4;
-mod semi_implicit;
+pub(crate) mod semi_implicit;
 mod softness;
 
 use bevy::prelude::*;

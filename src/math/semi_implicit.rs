@@ -20,6 +20,22 @@ pub fn linear(f: &ForceModel, v: Vec3, h: f32) -> (Vec3, Vec3) {
     (v * h, v)
 }
 
+/// `n` substeps of the angular motion with the spin carried in the body frame between
+/// them (the one-substep form goes through the world frame each time: a rounding per
+/// substep in the invariants, which made energy drift grow with the substep count:
+/// +1.9e-3 at 16 substeps, +7.1e-3 at 64, on the tumbling box over 10 s).
+pub fn angular_substeps(body: &Inertial, q: Quat, w: Vec3, h: f32, n: u32) -> (Quat, Vec3) {
+    let f = body.forces;
+    let (mut q, mut wb) = (q, q.inverse() * w);
+    for _ in 0..n {
+        let tb = q.inverse() * f.torque;
+        wb = solve_gyroscopic_midpoint(body.inertia, wb, tb, h) / (1.0 + h * f.angular_damping);
+        q = rotate(q, q * wb, h);
+    }
+    (q, q * wb)
+}
+
+/// One substep of the angular motion: orientation and world spin at its end.
 pub fn angular(body: &Inertial, q: Quat, w: Vec3, h: f32) -> (Quat, Vec3) {
     let f = body.forces;
     let wb = q.inverse() * w;
