@@ -323,27 +323,26 @@ impl Shape {
             Shape::Cuboid { half_extents } => Shape::Cuboid {
                 half_extents: half_extents * s,
             },
+            // Round across the axis (the larger of x and z), scaled along it by y.
             Shape::Capsule {
                 radius,
                 half_height,
-            } => Shape::Capsule {
-                radius: radius * s.x.max(s.z),
-                half_height: half_height * s.y,
-            },
-            Shape::Cylinder {
+            }
+            | Shape::Cylinder {
                 radius,
                 half_height,
-            } => Shape::Cylinder {
-                radius: radius * s.x.max(s.z),
-                half_height: half_height * s.y,
-            },
-            Shape::Cone {
+            }
+            | Shape::Cone {
                 radius,
                 half_height,
-            } => Shape::Cone {
-                radius: radius * s.x.max(s.z),
-                half_height: half_height * s.y,
-            },
+            } => {
+                let (radius, half_height) = (radius * s.x.max(s.z), half_height * s.y);
+                match *self {
+                    Shape::Capsule { .. } => Shape::Capsule { radius, half_height },
+                    Shape::Cylinder { .. } => Shape::Cylinder { radius, half_height },
+                    _ => Shape::Cone { radius, half_height },
+                }
+            }
             // Rebuilt from scaled points (a hull on a moving body with a scale other
             // than one is rebuilt every step: scale its points instead).
             Shape::ConvexHull(ref h) => h.scaled(s).map_or_else(|| self.clone(), Shape::ConvexHull),
@@ -476,6 +475,32 @@ mod tests {
         );
         assert!((hi.x - 2f32.sqrt()).abs() < 1e-5 && (lo.z + 2f32.sqrt()).abs() < 1e-5);
         assert!((hi.y - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn round_shapes_scale_across_and_along_their_axis() {
+        let s = Vec3::new(2.0, 3.0, 1.5);
+        for shape in [
+            Collider::capsule(0.5, 1.0).shape,
+            Collider::cylinder(0.5, 1.0).shape,
+            Collider::cone(0.5, 1.0).shape,
+        ] {
+            let scaled = shape.scaled(s);
+            assert_eq!(scaled.kind(), shape.kind());
+            let (r, h) = match scaled {
+                Shape::Capsule { radius, half_height }
+                | Shape::Cylinder { radius, half_height }
+                | Shape::Cone { radius, half_height } => (radius, half_height),
+                _ => unreachable!(),
+            };
+            assert_eq!((r, h), (1.0, 3.0), "{scaled:?}");
+            // Uneven across the axis is never exact; even across it is, but for a
+            // capsule stretched along it (its caps stay round).
+            assert!(!shape.scales_exactly(s));
+            let even_across = Vec3::new(2.0, 3.0, 2.0);
+            let capsule = matches!(shape, Shape::Capsule { .. });
+            assert_eq!(shape.scales_exactly(even_across), !capsule, "{shape:?}");
+        }
     }
 
     #[test]
