@@ -23,19 +23,37 @@ struct Scene {
 }
 
 fn boxes(s: &Scene, k: usize) -> Vec<(Vec3, Vec3)> {
-    s.frames[k].iter().map(|&c| (c - s.half, c + s.half)).collect()
+    s.frames[k]
+        .iter()
+        .map(|&c| (c - s.half, c + s.half))
+        .collect()
 }
 
 /// 2000 bodies of 0.5 m falling at 5 m/s through a 18 × 28 × 18 m column (rain).
 fn rain() -> Scene {
     let mut rnd = Rnd(21);
     let start: Vec<Vec3> = (0..2000)
-        .map(|_| Vec3::new(rnd.range(-9.0, 9.0), rnd.range(2.0, 30.0), rnd.range(-9.0, 9.0)))
+        .map(|_| {
+            Vec3::new(
+                rnd.range(-9.0, 9.0),
+                rnd.range(2.0, 30.0),
+                rnd.range(-9.0, 9.0),
+            )
+        })
         .collect();
     let frames = (0..STEPS)
-        .map(|k| start.iter().map(|&p| p - Vec3::Y * (5.0 / 60.0) * k as f32).collect())
+        .map(|k| {
+            start
+                .iter()
+                .map(|&p| p - Vec3::Y * (5.0 / 60.0) * k as f32)
+                .collect()
+        })
         .collect();
-    Scene { name: "rain (2000)", frames, half: Vec3::splat(0.27) }
+    Scene {
+        name: "rain (2000)",
+        frames,
+        half: Vec3::splat(0.27),
+    }
 }
 
 /// The 385-cube pyramid at rest, every cube trembling by 0.1 mm.
@@ -46,7 +64,11 @@ fn pyramid() -> Scene {
         for i in 0..n {
             for j in 0..n {
                 let off = (n as f32 - 1.0) * 0.5;
-                start.push(Vec3::new(i as f32 - off, 0.5 + layer as f32, j as f32 - off));
+                start.push(Vec3::new(
+                    i as f32 - off,
+                    0.5 + layer as f32,
+                    j as f32 - off,
+                ));
             }
         }
     }
@@ -54,7 +76,11 @@ fn pyramid() -> Scene {
     let frames = (0..STEPS)
         .map(|_| start.iter().map(|&p| p + rnd.vec(-1e-4, 1e-4)).collect())
         .collect();
-    Scene { name: "pyramid (385)", frames, half: Vec3::splat(0.52) }
+    Scene {
+        name: "pyramid (385)",
+        frames,
+        half: Vec3::splat(0.52),
+    }
 }
 
 fn ours(s: &Scene) -> (f64, usize) {
@@ -70,7 +96,12 @@ fn ours(s: &Scene) -> (f64, usize) {
 
 fn parry(s: &Scene) -> (f64, usize) {
     let all: Vec<Vec<Aabb>> = (0..STEPS)
-        .map(|k| boxes(s, k).into_iter().map(|(lo, hi)| Aabb::new(lo, hi)).collect())
+        .map(|k| {
+            boxes(s, k)
+                .into_iter()
+                .map(|(lo, hi)| Aabb::new(lo, hi))
+                .collect()
+        })
         .collect();
     let mut bvh = Bvh::from_leaves(BvhBuildStrategy::Binned, &all[0]);
     let mut ws = BvhWorkspace::default();
@@ -106,6 +137,10 @@ fn main() {
             pb = p;
         }
         let (o, p) = (median(a), median(b));
-        println!("| {} | {o:.1} | {p:.1} | {:.2} | {pa}, {pb} |", s.name, p / o);
+        println!(
+            "| {} | {o:.1} | {p:.1} | {:.2} | {pa}, {pb} |",
+            s.name,
+            p / o
+        );
     }
 }

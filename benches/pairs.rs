@@ -16,7 +16,11 @@ const ROUNDS: usize = 15;
 
 type Pose = (Shape, Vec3, Quat);
 
-fn poses(a: impl Fn(&mut Rnd) -> Shape, b: impl Fn(&mut Rnd) -> Shape, plane: bool) -> Vec<(Pose, Pose)> {
+fn poses(
+    a: impl Fn(&mut Rnd) -> Shape,
+    b: impl Fn(&mut Rnd) -> Shape,
+    plane: bool,
+) -> Vec<(Pose, Pose)> {
     let mut rnd = Rnd(0x2545_F491);
     (0..POSES)
         .map(|_| {
@@ -51,7 +55,9 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 fn main() {
-    let sphere = |r: &mut Rnd| Shape::Sphere { radius: r.range(0.1, 1.0) };
+    let sphere = |r: &mut Rnd| Shape::Sphere {
+        radius: r.range(0.1, 1.0),
+    };
     let cuboid = |r: &mut Rnd| Shape::Cuboid {
         half_extents: Vec3::new(r.range(0.1, 1.0), r.range(0.1, 1.0), r.range(0.1, 1.0)),
     };

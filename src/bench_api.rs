@@ -26,8 +26,16 @@ pub fn collide(
     b: (&Shape, Vec3, Quat),
     margin: f32,
 ) -> usize {
-    let pa = Posed { shape: a.0, pos: a.1, rot: a.2 };
-    let pb = Posed { shape: b.0, pos: b.1, rot: b.2 };
+    let pa = Posed {
+        shape: a.0,
+        pos: a.1,
+        rot: a.2,
+    };
+    let pb = Posed {
+        shape: b.0,
+        pos: b.1,
+        rot: b.2,
+    };
     let mut m = Manifold::default();
     match with {
         Implementation::Ours => {

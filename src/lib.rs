@@ -34,9 +34,9 @@ pub mod mesh_colliders;
 #[cfg(feature = "picking")]
 pub mod picking;
 pub mod plugin;
+pub mod query;
 #[cfg(any(test, feature = "bench-internals"))]
 mod rng;
-pub mod query;
 pub mod scene;
 pub mod settings;
 pub mod state_hash;

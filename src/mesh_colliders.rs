@@ -16,13 +16,21 @@ impl Collider {
     pub fn trimesh_from_mesh(mesh: &Mesh) -> Result<Self, String> {
         let positions = positions(mesh)?;
         if mesh.primitive_topology() != PrimitiveTopology::TriangleList {
-            return Err(format!("a {:?} mesh, not a triangle list", mesh.primitive_topology()));
+            return Err(format!(
+                "a {:?} mesh, not a triangle list",
+                mesh.primitive_topology()
+            ));
         }
         let triangles: Vec<[u32; 3]> = match mesh.try_indices().ok() {
-            Some(Indices::U16(i)) => i.chunks_exact(3).map(|t| [t[0] as u32, t[1] as u32, t[2] as u32]).collect(),
+            Some(Indices::U16(i)) => i
+                .chunks_exact(3)
+                .map(|t| [t[0] as u32, t[1] as u32, t[2] as u32])
+                .collect(),
             Some(Indices::U32(i)) => i.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
             // Unindexed: every three positions are a triangle.
-            None => (0..positions.len() as u32 / 3).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect(),
+            None => (0..positions.len() as u32 / 3)
+                .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+                .collect(),
         };
         Collider::trimesh(positions, triangles)
     }
@@ -97,7 +105,9 @@ pub fn construct_colliders(
             }
         }
         if found && !waiting {
-            commands.entity(root).remove::<ColliderConstructorHierarchy>();
+            commands
+                .entity(root)
+                .remove::<ColliderConstructorHierarchy>();
         }
     }
 }

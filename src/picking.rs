@@ -4,10 +4,10 @@
 //! skips a collider, `should_block_lower` stops the ray at it).
 
 use bevy::camera::Camera;
+use bevy::picking::Pickable;
 use bevy::picking::PickingSystems;
 use bevy::picking::backend::ray::RayMap;
 use bevy::picking::backend::{HitData, PointerHits};
-use bevy::picking::Pickable;
 use bevy::prelude::*;
 
 use crate::query::{SpatialQuery, SpatialQueryFilter};
@@ -18,8 +18,10 @@ pub struct PhysicsPickingPlugin;
 
 impl Plugin for PhysicsPickingPlugin {
     fn build(&self, app: &mut App) {
-        app.init_resource::<PhysicsPickingSettings>()
-            .add_systems(PreUpdate, update_physics_hits.in_set(PickingSystems::Backend));
+        app.init_resource::<PhysicsPickingSettings>().add_systems(
+            PreUpdate,
+            update_physics_hits.in_set(PickingSystems::Backend),
+        );
     }
 }
 
@@ -71,7 +73,12 @@ pub fn update_physics_hits(
             if pickable.is_some_and(|p| !p.is_hoverable) {
                 continue;
             }
-            let data = HitData::new(ray_id.camera, hit.distance, Some(hit.point), Some(hit.normal));
+            let data = HitData::new(
+                ray_id.camera,
+                hit.distance,
+                Some(hit.point),
+                Some(hit.normal),
+            );
             picks.push((hit.entity, data));
             if pickable.is_none_or(|p| p.should_block_lower) {
                 break;

@@ -31,7 +31,9 @@ fn dynamic(app: &mut App, collider: Collider, p: Vec3) -> Entity {
 }
 
 fn fixed(app: &mut App, collider: Collider, p: Vec3) -> Entity {
-    app.world_mut().spawn((collider, Transform::from_translation(p))).id()
+    app.world_mut()
+        .spawn((collider, Transform::from_translation(p)))
+        .id()
 }
 
 /// A square floor of two triangles (an internal edge along its diagonal), facing up.
@@ -59,11 +61,25 @@ fn a_hull_of_a_cube_rests_and_slides_like_the_box() {
         let mut app = paced_app(pacing, false);
         ground(&mut app, Vec3::ZERO, Quat::IDENTITY);
         let a = dynamic(&mut app, hull.clone(), Vec3::new(0.0, h.y, 0.0));
-        let b = dynamic(&mut app, Collider::cuboid(h.x, h.y, h.z), Vec3::new(0.0, h.y, 3.0));
+        let b = dynamic(
+            &mut app,
+            Collider::cuboid(h.x, h.y, h.z),
+            Vec3::new(0.0, h.y, 3.0),
+        );
         step(&mut app, 30);
         let what = format!("{pacing:?}");
-        assert_near(pos(&app, a).y, h.y, sag(2.0 * h.y), &format!("{what}: hull at rest"));
-        assert_near(pos(&app, a).y, pos(&app, b).y, 1e-4, &format!("{what}: as high as the box"));
+        assert_near(
+            pos(&app, a).y,
+            h.y,
+            sag(2.0 * h.y),
+            &format!("{what}: hull at rest"),
+        );
+        assert_near(
+            pos(&app, a).y,
+            pos(&app, b).y,
+            1e-4,
+            &format!("{what}: as high as the box"),
+        );
         // Both pushed along x at 3 m/s: each stops after v²/(2μg), μ = 0.5.
         for e in [a, b] {
             app.world_mut().get_mut::<Velocity>(e).unwrap().linear = Vec3::X * v0;
@@ -72,7 +88,12 @@ fn a_hull_of_a_cube_rests_and_slides_like_the_box() {
         let stop = v0 * v0 / (2.0 * 0.5 * G);
         // Semi-implicit Euler's substep error and the first step's start: ±1 cm.
         assert_near(pos(&app, a).x, stop, 0.01, &format!("{what}: hull's slide"));
-        assert_near(pos(&app, a).x, pos(&app, b).x, 1e-3, &format!("{what}: as far as the box"));
+        assert_near(
+            pos(&app, a).x,
+            pos(&app, b).x,
+            1e-3,
+            &format!("{what}: as far as the box"),
+        );
         assert!(vel(&app, a).linear.length() < 1e-3, "{what}: stopped");
         assert!(tilt(&app, a) < 1e-3, "{what}: flat");
     }
@@ -89,12 +110,19 @@ fn a_hull_with_askew_axes_keeps_its_angular_momentum() {
     let hull = Collider::convex_hull(&box_corners(h, askew, offset)).unwrap();
     let mut app = app_without_gravity();
     let e = dynamic(&mut app, hull, Vec3::ZERO);
-    app.world_mut().entity_mut(e).insert(Velocity { linear: Vec3::ZERO, angular: Vec3::new(0.3, 2.0, 0.5) });
+    app.world_mut().entity_mut(e).insert(Velocity {
+        linear: Vec3::ZERO,
+        angular: Vec3::new(0.3, 2.0, 0.5),
+    });
     step(&mut app, 1);
     // The box's own inertia, at its own density (water), turned by `askew`.
     let mass = 1000.0 * 8.0 * h.x * h.y * h.z;
     let s = h * 2.0;
-    let moments = Vec3::new(s.y * s.y + s.z * s.z, s.x * s.x + s.z * s.z, s.x * s.x + s.y * s.y) * (mass / 12.0);
+    let moments = Vec3::new(
+        s.y * s.y + s.z * s.z,
+        s.x * s.x + s.z * s.z,
+        s.x * s.x + s.y * s.y,
+    ) * (mass / 12.0);
     let momentum = |app: &App| {
         let r = Mat3::from_quat(rot(app, e) * askew);
         r * Mat3::from_diagonal(moments) * r.transpose() * vel(app, e).angular
@@ -117,7 +145,13 @@ fn a_ball_rolls_across_a_mesh_floor_without_a_bump() {
     for pacing in Pacing::GAME {
         let mut app = paced_app(pacing, false);
         fixed(&mut app, floor_mesh(10.0), Vec3::ZERO);
-        let b = ball(&mut app, r, 1.0, Vec3::new(-4.0, r, -3.0), Vec3::new(2.0, 0.0, 1.5));
+        let b = ball(
+            &mut app,
+            r,
+            1.0,
+            Vec3::new(-4.0, r, -3.0),
+            Vec3::new(2.0, 0.0, 1.5),
+        );
         let mut highest: f32 = 0.0;
         for _ in 0..150 {
             step(&mut app, 1);
@@ -126,8 +160,18 @@ fn a_ball_rolls_across_a_mesh_floor_without_a_bump() {
         let what = format!("{pacing:?}");
         assert!(highest < r + 1e-3, "{what}: bumped up to {highest}");
         let v0 = Vec3::new(2.0, 0.0, 1.5).length();
-        assert_near(vel(&app, b).linear.length(), 5.0 / 7.0 * v0, 0.01 * v0, &format!("{what}: rolling speed"));
-        assert_near(pos(&app, b).y, r, sag(2.0 * r), &format!("{what}: on the floor"));
+        assert_near(
+            vel(&app, b).linear.length(),
+            5.0 / 7.0 * v0,
+            0.01 * v0,
+            &format!("{what}: rolling speed"),
+        );
+        assert_near(
+            pos(&app, b).y,
+            r,
+            sag(2.0 * r),
+            &format!("{what}: on the floor"),
+        );
     }
 }
 
@@ -171,7 +215,12 @@ fn a_box_slides_over_internal_edges_flat() {
     }
     assert!(highest < h + 1e-3, "bumped up to {highest}");
     assert!(tilted < 1e-3, "tilted {tilted}");
-    assert_near(vel(&app, b).linear.length(), 5.0, 0.01, "frictionless: the speed kept");
+    assert_near(
+        vel(&app, b).linear.length(),
+        5.0,
+        0.01,
+        "frictionless: the speed kept",
+    );
 }
 
 /// A bowl: a spherical cap of radius R meshed in rings, facing in. A ball let go on its
@@ -184,7 +233,13 @@ fn a_ball_stays_inside_a_mesh_bowl() {
         let polar = (i as f32 / rings as f32) * 70f32.to_radians();
         for j in 0..sectors {
             let az = j as f32 / sectors as f32 * 2.0 * PI;
-            v.push(Vec3::new(polar.sin() * az.cos(), 1.0 - polar.cos(), polar.sin() * az.sin()) * big);
+            v.push(
+                Vec3::new(
+                    polar.sin() * az.cos(),
+                    1.0 - polar.cos(),
+                    polar.sin() * az.sin(),
+                ) * big,
+            );
         }
     }
     let mut t = vec![];
@@ -205,19 +260,35 @@ fn a_ball_stays_inside_a_mesh_bowl() {
     fixed(&mut app, bowl, Vec3::ZERO);
     // 45° up the side, on the surface: centre at distance R − r from the sphere's centre.
     let centre = Vec3::Y * big;
-    let start = centre + (Vec3::new(45f32.to_radians().sin(), -45f32.to_radians().cos(), 0.0)) * (big - r);
-    let b = ball(&mut app, r, 1.0, start + Vec3::Y * 0.01, Vec3::new(0.0, 0.0, 1.0));
+    let start =
+        centre + (Vec3::new(45f32.to_radians().sin(), -45f32.to_radians().cos(), 0.0)) * (big - r);
+    let b = ball(
+        &mut app,
+        r,
+        1.0,
+        start + Vec3::Y * 0.01,
+        Vec3::new(0.0, 0.0, 1.0),
+    );
     let energy = |app: &App| {
         let v = vel(app, b);
-        G * pos(app, b).y + 0.5 * v.linear.length_squared() + 0.5 * 0.4 * r * r * v.angular.length_squared()
+        G * pos(app, b).y
+            + 0.5 * v.linear.length_squared()
+            + 0.5 * 0.4 * r * r * v.angular.length_squared()
     };
     let e0 = energy(&app);
     for _ in 0..600 {
         step(&mut app, 1);
         let d = pos(&app, b).distance(centre);
         // Inside the sphere, never through the mesh (a facet's chord sags 2.5 cm below it).
-        assert!(d < big - r + 1e-3 && d > big - r - 0.05, "left the bowl: {d}");
-        assert!(energy(&app) < e0 + 0.01, "gained energy: {} > {e0}", energy(&app));
+        assert!(
+            d < big - r + 1e-3 && d > big - r - 0.05,
+            "left the bowl: {d}"
+        );
+        assert!(
+            energy(&app) < e0 + 0.01,
+            "gained energy: {} > {e0}",
+            energy(&app)
+        );
     }
 }
 
@@ -228,12 +299,26 @@ fn balls_rest_on_a_heightfield_and_roll_down_its_slope() {
     let r = 0.3;
     let mut app = app();
     let flat = vec![vec![0.5; 9]; 9];
-    fixed(&mut app, Collider::heightfield(&flat, Vec2::new(8.0, 8.0)).unwrap(), Vec3::ZERO);
+    fixed(
+        &mut app,
+        Collider::heightfield(&flat, Vec2::new(8.0, 8.0)).unwrap(),
+        Vec3::ZERO,
+    );
     let theta = 10f32.to_radians();
     // Rows along x, from −10 to 10 m: height (x + 10)·tanθ.
     let slope: Vec<Vec<f32>> = (0..21).map(|i| vec![i as f32 * theta.tan(); 5]).collect();
-    fixed(&mut app, Collider::heightfield(&slope, Vec2::new(20.0, 8.0)).unwrap(), Vec3::new(0.0, 0.0, 20.0));
-    let resting = ball(&mut app, r, 1.0, Vec3::new(1.0, 0.5 + r + 0.01, 0.0), Vec3::ZERO);
+    fixed(
+        &mut app,
+        Collider::heightfield(&slope, Vec2::new(20.0, 8.0)).unwrap(),
+        Vec3::new(0.0, 0.0, 20.0),
+    );
+    let resting = ball(
+        &mut app,
+        r,
+        1.0,
+        Vec3::new(1.0, 0.5 + r + 0.01, 0.0),
+        Vec3::ZERO,
+    );
     let normal = Vec3::new(-theta.sin(), theta.cos(), 0.0);
     let on_slope = |x: f32| Vec3::new(x, (x + 10.0) * theta.tan(), 20.0) + normal * r;
     let rolling = ball(&mut app, r, 1.0, on_slope(5.0), Vec3::ZERO);
@@ -241,26 +326,45 @@ fn balls_rest_on_a_heightfield_and_roll_down_its_slope() {
     let down = Vec3::new(-theta.cos(), -theta.sin(), 0.0);
     let v0 = vel(&app, rolling).linear.dot(down);
     step(&mut app, 60);
-    assert_near(pos(&app, resting).y, 0.5 + r, sag(2.0 * r), "resting on the flat field");
+    assert_near(
+        pos(&app, resting).y,
+        0.5 + r,
+        sag(2.0 * r),
+        "resting on the flat field",
+    );
     let a = (vel(&app, rolling).linear.dot(down) - v0) / 1.0;
     let expected = 5.0 / 7.0 * G * theta.sin();
     assert_near(a, expected, 0.01 * expected, "rolling down the field");
     let p = pos(&app, rolling);
-    assert_near((p - on_slope(p.x) + normal * r).dot(normal), r, sag(2.0 * r), "on the slope");
+    assert_near(
+        (p - on_slope(p.x) + normal * r).dot(normal),
+        r,
+        sag(2.0 * r),
+        "on the slope",
+    );
 }
 
 #[test]
 fn a_dynamic_mesh_is_refused_by_name() {
     let mut app = app();
     let e = dynamic(&mut app, floor_mesh(1.0), Vec3::ZERO);
-    let field = dynamic(&mut app, Collider::heightfield(&vec![vec![0.0; 2]; 2], Vec2::ONE).unwrap(), Vec3::X * 5.0);
+    let field = dynamic(
+        &mut app,
+        Collider::heightfield(&vec![vec![0.0; 2]; 2], Vec2::ONE).unwrap(),
+        Vec3::X * 5.0,
+    );
     step(&mut app, 1);
     assert_eq!(rejected_field(&app, e), Some("Collider"));
     assert_eq!(rejected_field(&app, field), Some("Collider"));
     // A kinematic mesh is fine: a moving platform.
     let platform = app
         .world_mut()
-        .spawn((RigidBody::Kinematic, floor_mesh(1.0), Transform::from_xyz(0.0, 0.0, 10.0), Velocity::linear(Vec3::X)))
+        .spawn((
+            RigidBody::Kinematic,
+            floor_mesh(1.0),
+            Transform::from_xyz(0.0, 0.0, 10.0),
+            Velocity::linear(Vec3::X),
+        ))
         .id();
     step(&mut app, 10);
     assert_eq!(rejected_field(&app, platform), None);
@@ -271,15 +375,23 @@ fn a_dynamic_mesh_is_refused_by_name() {
 #[test]
 fn rays_hit_hulls_meshes_and_heightfields() {
     let mut app = app();
-    let hull = Collider::convex_hull(&box_corners(Vec3::splat(0.5), Quat::IDENTITY, Vec3::ZERO)).unwrap();
+    let hull =
+        Collider::convex_hull(&box_corners(Vec3::splat(0.5), Quat::IDENTITY, Vec3::ZERO)).unwrap();
     let h = fixed(&mut app, hull, Vec3::new(0.0, 1.0, 0.0));
     let m = fixed(&mut app, floor_mesh(1.0), Vec3::new(5.0, 0.3, 0.0));
     let heights: Vec<Vec<f32>> = (0..5).map(|i| vec![i as f32 * 0.25; 5]).collect();
-    let f = fixed(&mut app, Collider::heightfield(&heights, Vec2::new(4.0, 4.0)).unwrap(), Vec3::new(10.0, 0.0, 0.0));
+    let f = fixed(
+        &mut app,
+        Collider::heightfield(&heights, Vec2::new(4.0, 4.0)).unwrap(),
+        Vec3::new(10.0, 0.0, 0.0),
+    );
     step(&mut app, 1);
     let filter = SpatialQueryFilter::default();
     let down = |app: &mut App, x: f32| {
-        query(app, |q| q.cast_ray(Vec3::new(x, 10.0, 0.1), Dir3::NEG_Y, 100.0, true, &filter)).unwrap()
+        query(app, |q| {
+            q.cast_ray(Vec3::new(x, 10.0, 0.1), Dir3::NEG_Y, 100.0, true, &filter)
+        })
+        .unwrap()
     };
     let hit = down(&mut app, 0.0);
     assert_eq!(hit.entity, h);
@@ -292,5 +404,10 @@ fn rays_hit_hulls_meshes_and_heightfields() {
     let hit = down(&mut app, 10.5);
     assert_eq!(hit.entity, f);
     assert_near(hit.distance, 10.0 - 0.625, 1e-5, "heightfield");
-    assert_near_vec(hit.normal, Vec3::new(-0.25, 1.0, 0.0).normalize(), 1e-5, "slope normal");
+    assert_near_vec(
+        hit.normal,
+        Vec3::new(-0.25, 1.0, 0.0).normalize(),
+        1e-5,
+        "slope normal",
+    );
 }

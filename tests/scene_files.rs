@@ -61,7 +61,9 @@ fn parry_shape(shape: ShapeDesc) -> parry3d::shape::SharedShape {
         ShapeDesc::Capsule(r, h) => SharedShape::capsule_y(h, r),
         ShapeDesc::Cylinder(r, h) => SharedShape::cylinder(h, r),
         ShapeDesc::Cone(r, h) => SharedShape::cone(h, r),
-        ShapeDesc::Rock(r, seed) => SharedShape::convex_hull(&tumble::scene::rock_points(r, seed)).unwrap(),
+        ShapeDesc::Rock(r, seed) => {
+            SharedShape::convex_hull(&tumble::scene::rock_points(r, seed)).unwrap()
+        }
     }
 }
 
@@ -132,7 +134,11 @@ fn depths<'a>(
         };
         // How far the body reaches toward the plane (from its side of a wall): not the
         // same both ways for a rock.
-        let toward = if local.y >= 0.0 { -(turn * Vec3::Y) } else { turn * Vec3::Y };
+        let toward = if local.y >= 0.0 {
+            -(turn * Vec3::Y)
+        } else {
+            turn * Vec3::Y
+        };
         Some(reach(d.shape, q, toward) - distance)
     })
 }
@@ -151,10 +157,9 @@ fn energy(app: &App, bodies: &[Entity], descs: &[BodyDesc]) -> f64 {
             let w = (q * shape.principal_frame()).inverse() * v.angular;
             let centre = pos(app, b) + q * shape.center_of_mass();
             let work = d.force.dot(pos(app, b) - d.position);
-            let e = 0.5 * m * v.linear.length_squared()
-                + 0.5 * w.dot(inertia * w)
-                + m * G * centre.y
-                - work;
+            let e =
+                0.5 * m * v.linear.length_squared() + 0.5 * w.dot(inertia * w) + m * G * centre.y
+                    - work;
             e as f64
         })
         .sum()

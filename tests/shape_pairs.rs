@@ -15,7 +15,9 @@ fn hull() -> Collider {
     // An irregular hull: a box with one corner cut off, so its centre of mass is off
     // its origin and its axes are not the box's.
     let mut points: Vec<Vec3> = (0..8)
-        .map(|i| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32) * 0.5 - 0.25)
+        .map(|i| {
+            Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32) * 0.5 - 0.25
+        })
         .collect();
     points[7] = Vec3::splat(0.05);
     Collider::convex_hull(&points).unwrap()
@@ -42,13 +44,22 @@ fn grounds() -> Vec<(&'static str, Collider)> {
     vec![
         ("plane", Collider::plane()),
         ("plane_rect", Collider::plane_rect(5.0, 5.0)),
-        ("trimesh", Collider::trimesh(quad, vec![[0, 2, 1], [0, 3, 2]]).unwrap()),
-        ("heightfield", Collider::heightfield(&vec![vec![0.0; 6]; 6], Vec2::splat(10.0)).unwrap()),
+        (
+            "trimesh",
+            Collider::trimesh(quad, vec![[0, 2, 1], [0, 3, 2]]).unwrap(),
+        ),
+        (
+            "heightfield",
+            Collider::heightfield(&vec![vec![0.0; 6]; 6], Vec2::splat(10.0)).unwrap(),
+        ),
     ]
 }
 
 fn touches(app: &App, a: Entity, b: Entity) -> bool {
-    app.world().resource::<PhysicsWorld>().contacts_of(a).any(|c| c.other == b)
+    app.world()
+        .resource::<PhysicsWorld>()
+        .contacts_of(a)
+        .any(|c| c.other == b)
 }
 
 #[test]
@@ -101,16 +112,27 @@ fn every_moving_shape_comes_to_rest_on_every_ground() {
         for (na, a) in movers() {
             let what = format!("{na} on {ng}");
             let mut app = app();
-            let ground = app.world_mut().spawn((g.clone(), Transform::default())).id();
+            let ground = app
+                .world_mut()
+                .spawn((g.clone(), Transform::default()))
+                .id();
             let body = app
                 .world_mut()
-                .spawn((RigidBody::Dynamic, a.clone(), Transform::from_xyz(0.5, 0.8, -0.3)))
+                .spawn((
+                    RigidBody::Dynamic,
+                    a.clone(),
+                    Transform::from_xyz(0.5, 0.8, -0.3),
+                ))
                 .id();
             step(&mut app, 150);
             assert!(touches(&app, body, ground), "{what}: not touching");
             let overlap = app.world().resource::<PhysicsWorld>().deepest_overlap();
             assert!(overlap < 5e-3, "{what}: sank {overlap} m in");
-            assert!(vel(&app, body).linear.length() < 0.02, "{what}: still moving {:?}", vel(&app, body));
+            assert!(
+                vel(&app, body).linear.length() < 0.02,
+                "{what}: still moving {:?}",
+                vel(&app, body)
+            );
             // Its lowest point on the ground, within the contacts' sag.
             let (lo, _) = a.shape.aabb(pos(&app, body), rot(&app, body));
             assert!(lo.y.abs() < 5e-3, "{what}: lowest point at {}", lo.y);

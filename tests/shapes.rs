@@ -45,8 +45,18 @@ fn a_capsule_rests_on_its_side_at_its_radius_and_on_its_end_at_its_half_length()
         );
         frames(&mut app, 180);
         let what = format!("{pacing:?}");
-        assert_near(pos(&app, side).y, r, sag(2.0 * r), &format!("{what}: on its side"));
-        assert_near(pos(&app, end).y, h + r, sag(2.0 * r), &format!("{what}: on its end"));
+        assert_near(
+            pos(&app, side).y,
+            r,
+            sag(2.0 * r),
+            &format!("{what}: on its side"),
+        );
+        assert_near(
+            pos(&app, end).y,
+            h + r,
+            sag(2.0 * r),
+            &format!("{what}: on its end"),
+        );
         // Upright on a hemisphere is a balance point: nothing pushed it off.
         assert!(tilt(&app, end) < 1e-3, "{what}: tilt {}", tilt(&app, end));
         assert!(vel(&app, side).linear.length() < 1e-2, "{what}: still");
@@ -58,7 +68,12 @@ fn a_cylinder_rests_on_its_end_and_on_its_side() {
     let (r, h) = (0.3, 0.4);
     let mut app = app();
     ground(&mut app, Vec3::ZERO, Quat::IDENTITY);
-    let up = body(&mut app, Collider::cylinder(r, h), Vec3::new(0.0, h + 0.05, 0.0), Quat::IDENTITY);
+    let up = body(
+        &mut app,
+        Collider::cylinder(r, h),
+        Vec3::new(0.0, h + 0.05, 0.0),
+        Quat::IDENTITY,
+    );
     let lying = body(
         &mut app,
         Collider::cylinder(r, h),
@@ -67,7 +82,11 @@ fn a_cylinder_rests_on_its_end_and_on_its_side() {
     );
     step(&mut app, 180);
     assert_near(pos(&app, up).y, h, sag(2.0 * r), "on its end");
-    assert!(tilt(&app, up) < 1e-3, "flat on its end: tilt {}", tilt(&app, up));
+    assert!(
+        tilt(&app, up) < 1e-3,
+        "flat on its end: tilt {}",
+        tilt(&app, up)
+    );
     assert_near(pos(&app, lying).y, r, sag(2.0 * r), "on its side");
 }
 
@@ -102,13 +121,23 @@ fn a_cylinder_rolls_down_a_slope_at_two_thirds_g_sin_theta() {
         let a = (v.linear.dot(down) - v0) / t;
         let expected = 2.0 / 3.0 * 9.81 * theta.sin();
         let what = format!("{pacing:?}");
-        assert_near(a, expected, 0.005 * expected, &format!("{what}: acceleration"));
+        assert_near(
+            a,
+            expected,
+            0.005 * expected,
+            &format!("{what}: acceleration"),
+        );
         // Rolling: the contact point is at rest, ω·r = v about the axis.
         let spin = v.angular.dot(slope * Vec3::Z).abs();
         let speed = v.linear.length();
         assert_near(spin * r, speed, 0.02 * speed, &format!("{what}: ω r = v"));
         // It stays on the slope.
-        assert_near(pos(&app, e).dot(normal), r, sag(2.0 * r), &format!("{what}: on the slope"));
+        assert_near(
+            pos(&app, e).dot(normal),
+            r,
+            sag(2.0 * r),
+            &format!("{what}: on the slope"),
+        );
     }
 }
 
@@ -122,17 +151,41 @@ fn a_cone_stands_on_its_base_and_rights_itself_from_a_tilt() {
     assert!(tipping > 30f32.to_radians());
     let mut app = app();
     ground(&mut app, Vec3::ZERO, Quat::IDENTITY);
-    let standing = body(&mut app, Collider::cone(r, h), Vec3::new(-2.0, h + 0.01, 0.0), Quat::IDENTITY);
+    let standing = body(
+        &mut app,
+        Collider::cone(r, h),
+        Vec3::new(-2.0, h + 0.01, 0.0),
+        Quat::IDENTITY,
+    );
     // Tilted 30° about z, its base's lowest rim point just on the ground.
     let tilt0 = 30f32.to_radians();
     let q = Quat::from_rotation_z(tilt0);
     let rim = q * Vec3::new(r, -h, 0.0);
-    let tilted = body(&mut app, Collider::cone(r, h), Vec3::new(2.0, -rim.y + 0.005, 0.0), q);
+    let tilted = body(
+        &mut app,
+        Collider::cone(r, h),
+        Vec3::new(2.0, -rim.y + 0.005, 0.0),
+        q,
+    );
     step(&mut app, 240);
-    assert_near(pos(&app, standing).y, h, sag(2.0 * r), "standing: the base on the ground");
+    assert_near(
+        pos(&app, standing).y,
+        h,
+        sag(2.0 * r),
+        "standing: the base on the ground",
+    );
     assert!(tilt(&app, standing) < 1e-3, "standing: upright");
-    assert!(tilt(&app, tilted) < 0.01, "the tilted cone rights itself: tilt {}", tilt(&app, tilted));
-    assert_near(pos(&app, tilted).y, h, sag(2.0 * r), "righted: the base on the ground");
+    assert!(
+        tilt(&app, tilted) < 0.01,
+        "the tilted cone rights itself: tilt {}",
+        tilt(&app, tilted)
+    );
+    assert_near(
+        pos(&app, tilted).y,
+        h,
+        sag(2.0 * r),
+        "righted: the base on the ground",
+    );
     // The ground only pushes up and along: no energy from nowhere, it ends at rest.
     assert!(vel(&app, tilted).angular.length() < 0.05);
 }
@@ -142,11 +195,19 @@ fn a_cone_stands_on_its_base_and_rights_itself_from_a_tilt() {
 fn new_shapes_weigh_their_volume() {
     let (r, h) = (0.3f32, 0.5f32);
     let cases = [
-        (Collider::capsule(r, h), PI * r * r * 2.0 * h + 4.0 / 3.0 * PI * r.powi(3)),
+        (
+            Collider::capsule(r, h),
+            PI * r * r * 2.0 * h + 4.0 / 3.0 * PI * r.powi(3),
+        ),
         (Collider::cylinder(r, h), PI * r * r * 2.0 * h),
         (Collider::cone(r, h), PI * r * r * 2.0 * h / 3.0),
     ];
     for (c, volume) in cases {
-        assert_near(c.shape.volume(), volume, 1e-5 * volume, &format!("{:?}", c.shape));
+        assert_near(
+            c.shape.volume(),
+            volume,
+            1e-5 * volume,
+            &format!("{:?}", c.shape),
+        );
     }
 }

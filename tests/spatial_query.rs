@@ -28,10 +28,25 @@ fn rays_hit_each_shape_where_geometry_says() {
     let at = |x: f32| Vec3::new(x, 1.0, 0.0);
     let sphere = fixed(&mut app, Collider::sphere(0.5), at(0.0), Quat::IDENTITY);
     // A box turned 45° about z: its top is an edge at √2·h above its centre.
-    let cube = fixed(&mut app, Collider::cuboid(0.5, 0.5, 0.5), at(3.0), Quat::from_rotation_z(FRAC_PI_4));
+    let cube = fixed(
+        &mut app,
+        Collider::cuboid(0.5, 0.5, 0.5),
+        at(3.0),
+        Quat::from_rotation_z(FRAC_PI_4),
+    );
     // A capsule lying along x: its top is its radius above the axis.
-    let capsule = fixed(&mut app, Collider::capsule(0.3, 0.6), at(6.0), Quat::from_rotation_z(FRAC_PI_2));
-    let cylinder = fixed(&mut app, Collider::cylinder(0.4, 0.7), at(9.0), Quat::IDENTITY);
+    let capsule = fixed(
+        &mut app,
+        Collider::capsule(0.3, 0.6),
+        at(6.0),
+        Quat::from_rotation_z(FRAC_PI_2),
+    );
+    let cylinder = fixed(
+        &mut app,
+        Collider::cylinder(0.4, 0.7),
+        at(9.0),
+        Quat::IDENTITY,
+    );
     let cone = fixed(&mut app, Collider::cone(0.4, 0.5), at(12.0), Quat::IDENTITY);
     step(&mut app, 1);
     let down = |x: f32| (Vec3::new(x, 10.0, 0.0), Dir3::NEG_Y);
@@ -73,12 +88,22 @@ fn rays_hit_each_shape_where_geometry_says() {
     // Its side leans in by atan(r / 2h): normal (−2h, r, 0)/√(4h² + r²).
     let lean = Vec3::new(-1.0, 0.4, 0.0).normalize();
     assert_near_vec(hit.normal, lean, 1e-5, "the cone's side normal");
-    let hit = query(&mut app, |q| q.cast_ray(at(12.0), Dir3::X, 100.0, false, &any())).unwrap();
+    let hit = query(&mut app, |q| {
+        q.cast_ray(at(12.0), Dir3::X, 100.0, false, &any())
+    })
+    .unwrap();
     assert_near(hit.distance, 0.2, 1e-5, "out of the cone");
-    assert_near_vec(hit.normal, Vec3::new(-1.0, -0.4, 0.0).normalize(), 1e-5, "inward");
+    assert_near_vec(
+        hit.normal,
+        Vec3::new(-1.0, -0.4, 0.0).normalize(),
+        1e-5,
+        "inward",
+    );
     // All hits along a row through every shape, nearest first; nothing past the last.
     let o = Vec3::new(-5.0, 1.0, 0.0);
-    let hits = query(&mut app, |q| q.ray_hits(o, Dir3::X, 100.0, 10, true, &any()));
+    let hits = query(&mut app, |q| {
+        q.ray_hits(o, Dir3::X, 100.0, 10, true, &any())
+    });
     let order: Vec<_> = hits.iter().map(|h| h.entity).collect();
     assert_eq!(order, vec![sphere, cube, capsule, cylinder, cone]);
     assert!(hits.windows(2).all(|w| w[0].distance <= w[1].distance));
@@ -100,7 +125,9 @@ fn queries_see_the_last_completed_step_under_every_pacing() {
             frames(&mut app, 1);
             let y = pos(&app, ball).y;
             let o = Vec3::new(0.0, 30.0, 0.0);
-            let hit = query(&mut app, |q| q.cast_ray(o, Dir3::NEG_Y, f32::MAX, true, &any()));
+            let hit = query(&mut app, |q| {
+                q.cast_ray(o, Dir3::NEG_Y, f32::MAX, true, &any())
+            });
             if steps_taken(&app) == 0 {
                 // Not simulated yet (a 240 Hz frame can run no step): not found either.
                 assert!(hit.is_none(), "{pacing:?}: found before its first step");
@@ -144,22 +171,41 @@ fn filters_skip_layers_excluded_bodies_and_sensors() {
     let first = |app: &mut App, f: SpatialQueryFilter| {
         query(app, |q| q.cast_ray(o, Dir3::NEG_Y, 10.0, true, &f)).map(|h| h.entity)
     };
-    assert_eq!(first(&mut app, any()), Some(pickup), "everything: the sensor first");
+    assert_eq!(
+        first(&mut app, any()),
+        Some(pickup),
+        "everything: the sensor first"
+    );
     assert_eq!(first(&mut app, any().without_sensors()), Some(player));
     let not_me = any().without_sensors().with_excluded_entities([player]);
     assert_eq!(first(&mut app, not_me), Some(floor));
-    assert_eq!(first(&mut app, SpatialQueryFilter::from_mask(Layer::World)), Some(floor));
-    assert_eq!(first(&mut app, SpatialQueryFilter::from_mask(Layer::Pickup)), Some(pickup));
-    assert_eq!(first(&mut app, SpatialQueryFilter::from_mask(LayerMask::NONE)), None);
+    assert_eq!(
+        first(&mut app, SpatialQueryFilter::from_mask(Layer::World)),
+        Some(floor)
+    );
+    assert_eq!(
+        first(&mut app, SpatialQueryFilter::from_mask(Layer::Pickup)),
+        Some(pickup)
+    );
+    assert_eq!(
+        first(&mut app, SpatialQueryFilter::from_mask(LayerMask::NONE)),
+        None
+    );
     // A predicate sees each candidate's entity.
     let hit = query(&mut app, |q| {
-        q.cast_ray_predicate(o, Dir3::NEG_Y, 10.0, true, &any(), &|e| e != pickup && e != player)
+        q.cast_ray_predicate(o, Dir3::NEG_Y, 10.0, true, &any(), &|e| {
+            e != pickup && e != player
+        })
     });
     assert_eq!(hit.map(|h| h.entity), Some(floor));
     // Overlap queries under the same filters.
-    let inside = query(&mut app, |q| q.point_intersections(Vec3::new(0.0, 1.0, 0.0), &any()));
+    let inside = query(&mut app, |q| {
+        q.point_intersections(Vec3::new(0.0, 1.0, 0.0), &any())
+    });
     assert_eq!(inside, vec![player]);
-    let under = query(&mut app, |q| q.point_intersections(Vec3::new(0.0, -1.0, 0.0), &any()));
+    let under = query(&mut app, |q| {
+        q.point_intersections(Vec3::new(0.0, -1.0, 0.0), &any())
+    });
     assert_eq!(under, vec![floor], "below an infinite plane is inside it");
 }
 
@@ -169,12 +215,24 @@ fn filters_skip_layers_excluded_bodies_and_sensors() {
 fn shape_casts_stop_at_first_touch() {
     let mut app = app();
     let floor = fixed(&mut app, Collider::plane(), Vec3::ZERO, Quat::IDENTITY);
-    let wall = fixed(&mut app, Collider::cuboid(0.5, 2.0, 2.0), Vec3::new(5.0, 2.0, 0.0), Quat::IDENTITY);
+    let wall = fixed(
+        &mut app,
+        Collider::cuboid(0.5, 2.0, 2.0),
+        Vec3::new(5.0, 2.0, 0.0),
+        Quat::IDENTITY,
+    );
     step(&mut app, 1);
     let r = 0.3;
     let ball = Collider::sphere(r);
     let hit = query(&mut app, |q| {
-        q.cast_shape(&ball, Vec3::new(0.0, 1.0, 0.0), Quat::IDENTITY, Dir3::X, 20.0, &any())
+        q.cast_shape(
+            &ball,
+            Vec3::new(0.0, 1.0, 0.0),
+            Quat::IDENTITY,
+            Dir3::X,
+            20.0,
+            &any(),
+        )
     })
     .unwrap();
     assert_eq!(hit.entity, wall);
@@ -188,7 +246,14 @@ fn shape_casts_stop_at_first_touch() {
     // A box turned 45° about y falls onto the floor on its bottom face.
     let crate_ = Collider::cuboid(0.4, 0.25, 0.4);
     let hit = query(&mut app, |q| {
-        q.cast_shape(&crate_, Vec3::new(0.0, 3.0, 0.0), Quat::from_rotation_y(FRAC_PI_4), Dir3::NEG_Y, f32::MAX, &any())
+        q.cast_shape(
+            &crate_,
+            Vec3::new(0.0, 3.0, 0.0),
+            Quat::from_rotation_y(FRAC_PI_4),
+            Dir3::NEG_Y,
+            f32::MAX,
+            &any(),
+        )
     })
     .unwrap();
     assert_eq!(hit.entity, floor);
@@ -196,24 +261,58 @@ fn shape_casts_stop_at_first_touch() {
     assert_near_vec(hit.normal, Vec3::Y, 1e-4, "the floor's normal");
     // Starting inside the wall: distance 0.
     let hit = query(&mut app, |q| {
-        q.cast_shape(&ball, Vec3::new(5.0, 1.0, 0.0), Quat::IDENTITY, Dir3::X, 20.0, &any().with_excluded_entities([floor]))
+        q.cast_shape(
+            &ball,
+            Vec3::new(5.0, 1.0, 0.0),
+            Quat::IDENTITY,
+            Dir3::X,
+            20.0,
+            &any().with_excluded_entities([floor]),
+        )
     })
     .unwrap();
     assert_eq!((hit.entity, hit.distance), (wall, 0.0));
     // Shape overlaps: a ball touching the wall's face, and one a hair off it.
-    let touching = query(&mut app, |q| q.shape_intersections(&ball, Vec3::new(4.5 - r + 1e-3, 1.0, 0.0), Quat::IDENTITY, &any()));
+    let touching = query(&mut app, |q| {
+        q.shape_intersections(
+            &ball,
+            Vec3::new(4.5 - r + 1e-3, 1.0, 0.0),
+            Quat::IDENTITY,
+            &any(),
+        )
+    });
     assert_eq!(touching, vec![wall]);
-    let apart = query(&mut app, |q| q.shape_intersections(&ball, Vec3::new(4.5 - r - 1e-3, 1.0, 0.0), Quat::IDENTITY, &any()));
+    let apart = query(&mut app, |q| {
+        q.shape_intersections(
+            &ball,
+            Vec3::new(4.5 - r - 1e-3, 1.0, 0.0),
+            Quat::IDENTITY,
+            &any(),
+        )
+    });
     assert!(apart.is_empty());
     // The nearest point: on the wall's face for a point beside it, on the floor below.
-    let p = query(&mut app, |q| q.project_point(Vec3::new(3.0, 2.0, 0.0), true, &any())).unwrap();
+    let p = query(&mut app, |q| {
+        q.project_point(Vec3::new(3.0, 2.0, 0.0), true, &any())
+    })
+    .unwrap();
     assert_eq!(p.entity, wall);
-    assert_near_vec(p.point, Vec3::new(4.5, 2.0, 0.0), 1e-5, "projected on the wall");
+    assert_near_vec(
+        p.point,
+        Vec3::new(4.5, 2.0, 0.0),
+        1e-5,
+        "projected on the wall",
+    );
     assert_near(p.distance, 1.5, 1e-5, "distance to the wall");
-    let p = query(&mut app, |q| q.project_point(Vec3::new(-30.0, 0.5, 0.0), true, &any())).unwrap();
+    let p = query(&mut app, |q| {
+        q.project_point(Vec3::new(-30.0, 0.5, 0.0), true, &any())
+    })
+    .unwrap();
     assert_eq!((p.entity, p.is_inside), (floor, false));
     assert_near(p.distance, 0.5, 1e-5, "far away, the floor is nearest");
-    let boxes = query(&mut app, |q| q.aabb_intersections(Vec3::new(4.0, 3.9, -0.1), Vec3::new(4.6, 4.5, 0.1), &any()));
+    let boxes = query(&mut app, |q| {
+        q.aabb_intersections(Vec3::new(4.0, 3.9, -0.1), Vec3::new(4.6, 4.5, 0.1), &any())
+    });
     assert_eq!(boxes, vec![wall]);
 }
 
@@ -228,11 +327,18 @@ fn compound_parts_report_their_body() {
         .id();
     let part = app
         .world_mut()
-        .spawn((Collider::cuboid(0.5, 0.1, 0.5), Transform::from_xyz(1.0, 0.0, 0.0), ChildOf(body)))
+        .spawn((
+            Collider::cuboid(0.5, 0.1, 0.5),
+            Transform::from_xyz(1.0, 0.0, 0.0),
+            ChildOf(body),
+        ))
         .id();
     step(&mut app, 2);
     let o = Vec3::new(1.0, 10.0, 0.0);
-    let hit = query(&mut app, |q| q.cast_ray(o, Dir3::NEG_Y, 100.0, true, &any())).unwrap();
+    let hit = query(&mut app, |q| {
+        q.cast_ray(o, Dir3::NEG_Y, 100.0, true, &any())
+    })
+    .unwrap();
     assert_eq!((hit.entity, hit.body), (part, Some(body)));
     assert_near(hit.distance, 10.0 - 2.1, 1e-5, "the part's top");
     let f = any().with_excluded_entities([body]);

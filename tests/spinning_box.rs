@@ -126,7 +126,15 @@ fn explicit_euler_gains_energy() {
 fn more_substeps_keep_the_spin_energy() {
     for substeps in [4, 16, 64] {
         let run = spin_with(Integrator::SemiImplicitEuler, substeps);
-        assert!(run.e_drift < 2e-4, "{substeps} substeps: energy drift {:.2e}", run.e_drift);
-        assert!(run.l_drift < 2e-4, "{substeps} substeps: |L| drift {:.2e}", run.l_drift);
+        assert!(
+            run.e_drift < 2e-4,
+            "{substeps} substeps: energy drift {:.2e}",
+            run.e_drift
+        );
+        assert!(
+            run.l_drift < 2e-4,
+            "{substeps} substeps: |L| drift {:.2e}",
+            run.l_drift
+        );
     }
 }

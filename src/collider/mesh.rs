@@ -130,7 +130,9 @@ impl HeightFieldShape {
         let rows = heights.len();
         let cols = heights.first().map_or(0, Vec::len);
         if rows < 2 || cols < 2 || heights.iter().any(|r| r.len() != cols) {
-            return Err(format!("needs at least 2 × 2 heights in equal rows ({rows} rows)"));
+            return Err(format!(
+                "needs at least 2 × 2 heights in equal rows ({rows} rows)"
+            ));
         }
         if heights.iter().flatten().any(|h| !h.is_finite()) {
             return Err("a height is not finite".into());
@@ -174,7 +176,12 @@ by_identity!(ConvexHull: "hull", TriMeshShape: "mesh", HeightFieldShape: "field"
 
 impl fmt::Debug for ConvexHull {
     fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        write!(f, "ConvexHull({} points, {:.4} m³)", self.points().len(), self.volume())
+        write!(
+            f,
+            "ConvexHull({} points, {:.4} m³)",
+            self.points().len(),
+            self.volume()
+        )
     }
 }
 

@@ -205,15 +205,15 @@ impl Shape {
             Shape::Capsule {
                 radius,
                 half_height,
-            } if !(ok(radius) && ok(half_height)) => {
-                Err(format!("capsule radius {radius}, half height {half_height}"))
-            }
+            } if !(ok(radius) && ok(half_height)) => Err(format!(
+                "capsule radius {radius}, half height {half_height}"
+            )),
             Shape::Cylinder {
                 radius,
                 half_height,
-            } if !(ok(radius) && ok(half_height)) => {
-                Err(format!("cylinder radius {radius}, half height {half_height}"))
-            }
+            } if !(ok(radius) && ok(half_height)) => Err(format!(
+                "cylinder radius {radius}, half height {half_height}"
+            )),
             Shape::Cone {
                 radius,
                 half_height,
@@ -268,7 +268,9 @@ impl Shape {
     pub fn triangles(&self) -> Option<(Vec<Vec3>, Vec<[u32; 3]>)> {
         match *self {
             Shape::ConvexHull(ref h) => Some(h.polyhedron().to_trimesh()),
-            Shape::TriMesh(ref m) => Some((m.mesh().vertices().to_vec(), m.mesh().indices().to_vec())),
+            Shape::TriMesh(ref m) => {
+                Some((m.mesh().vertices().to_vec(), m.mesh().indices().to_vec()))
+            }
             Shape::HeightField(ref f) => Some(f.field().to_trimesh()),
             _ => None,
         }
@@ -338,9 +340,18 @@ impl Shape {
             } => {
                 let (radius, half_height) = (radius * s.x.max(s.z), half_height * s.y);
                 match *self {
-                    Shape::Capsule { .. } => Shape::Capsule { radius, half_height },
-                    Shape::Cylinder { .. } => Shape::Cylinder { radius, half_height },
-                    _ => Shape::Cone { radius, half_height },
+                    Shape::Capsule { .. } => Shape::Capsule {
+                        radius,
+                        half_height,
+                    },
+                    Shape::Cylinder { .. } => Shape::Cylinder {
+                        radius,
+                        half_height,
+                    },
+                    _ => Shape::Cone {
+                        radius,
+                        half_height,
+                    },
                 }
             }
             // Rebuilt from scaled points (a hull on a moving body with a scale other
@@ -488,9 +499,18 @@ mod tests {
             let scaled = shape.scaled(s);
             assert_eq!(scaled.kind(), shape.kind());
             let (r, h) = match scaled {
-                Shape::Capsule { radius, half_height }
-                | Shape::Cylinder { radius, half_height }
-                | Shape::Cone { radius, half_height } => (radius, half_height),
+                Shape::Capsule {
+                    radius,
+                    half_height,
+                }
+                | Shape::Cylinder {
+                    radius,
+                    half_height,
+                }
+                | Shape::Cone {
+                    radius,
+                    half_height,
+                } => (radius, half_height),
                 _ => unreachable!(),
             };
             assert_eq!((r, h), (1.0, 3.0), "{scaled:?}");

@@ -31,20 +31,39 @@ fn closest_between_segments(p1: Vec3, q1: Vec3, p2: Vec3, q2: Vec3) -> (Vec3, Ve
     let (c, b) = (d1.dot(r), d1.dot(d2));
     let denom = a * e - b * b;
     // Parallel (or a point): any s; take the one that makes t fit.
-    let mut s = if denom > 1e-12 * a * e { ((b * f - c * e) / denom).clamp(0.0, 1.0) } else { 0.0 };
+    let mut s = if denom > 1e-12 * a * e {
+        ((b * f - c * e) / denom).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     let mut t = if e > 0.0 { (b * s + f) / e } else { 0.0 };
     if t < 0.0 {
         t = 0.0;
-        s = if a > 0.0 { (-c / a).clamp(0.0, 1.0) } else { 0.0 };
+        s = if a > 0.0 {
+            (-c / a).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
     } else if t > 1.0 {
         t = 1.0;
-        s = if a > 0.0 { ((b - c) / a).clamp(0.0, 1.0) } else { 0.0 };
+        s = if a > 0.0 {
+            ((b - c) / a).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
     }
     (p1 + d1 * s, p2 + d2 * t)
 }
 
 /// Collides two capsules (radius, half height each) within `margin`.
-pub fn collide(a: Posed, (ra, ha): (f32, f32), b: Posed, (rb, hb): (f32, f32), margin: f32, out: &mut Manifold) {
+pub fn collide(
+    a: Posed,
+    (ra, ha): (f32, f32),
+    b: Posed,
+    (rb, hb): (f32, f32),
+    margin: f32,
+    out: &mut Manifold,
+) {
     let (a0, a1) = (a.pos - a.rot * Vec3::Y * ha, a.pos + a.rot * Vec3::Y * ha);
     let (b0, b1) = (b.pos - b.rot * Vec3::Y * hb, b.pos + b.rot * Vec3::Y * hb);
     let (pa, pb) = closest_between_segments(a0, a1, b0, b1);
@@ -54,7 +73,11 @@ pub fn collide(a: Posed, (ra, ha): (f32, f32), b: Posed, (rb, hb): (f32, f32), m
         return;
     }
     // Coincident axes: any direction across A's axis will do.
-    let normal = if dist > 1e-9 { gap / dist } else { (a.rot * Vec3::X).normalize() };
+    let normal = if dist > 1e-9 {
+        gap / dist
+    } else {
+        (a.rot * Vec3::X).normalize()
+    };
     // The closest pair, then each segment's ends against the other segment.
     let candidates = [
         (pa, pb, 0),
@@ -97,18 +120,36 @@ mod tests {
 
     #[test]
     fn parallel_capsules_touch_along_their_length() {
-        let s = Shape::Capsule { radius: 0.2, half_height: 0.3 };
-        let a = Posed { shape: &s, pos: Vec3::ZERO, rot: Quat::IDENTITY };
+        let s = Shape::Capsule {
+            radius: 0.2,
+            half_height: 0.3,
+        };
+        let a = Posed {
+            shape: &s,
+            pos: Vec3::ZERO,
+            rot: Quat::IDENTITY,
+        };
         // Side by side 1 mm apart, B turned 2.7° about z: both ends are points.
-        let b = Posed { shape: &s, pos: Vec3::new(0.401, 0.0, 0.0), rot: Quat::from_rotation_z(0.047) };
+        let b = Posed {
+            shape: &s,
+            pos: Vec3::new(0.401, 0.0, 0.0),
+            rot: Quat::from_rotation_z(0.047),
+        };
         let mut m = Manifold::default();
         collide(a, (0.2, 0.3), b, (0.2, 0.3), 0.05, &mut m);
         assert!(m.len >= 2, "{m:?}");
         assert!(m.normal.abs_diff_eq(Vec3::X, 0.03), "{}", m.normal);
         let ys: Vec<f32> = m.points().iter().map(|p| p.point.y).collect();
-        assert!(ys.iter().any(|&y| y > 0.25) && ys.iter().any(|&y| y < -0.25), "{ys:?}");
+        assert!(
+            ys.iter().any(|&y| y > 0.25) && ys.iter().any(|&y| y < -0.25),
+            "{ys:?}"
+        );
         // Crossed at right angles: one point.
-        let c = Posed { shape: &s, pos: Vec3::new(0.399, 0.0, 0.0), rot: Quat::from_rotation_x(1.5708) };
+        let c = Posed {
+            shape: &s,
+            pos: Vec3::new(0.399, 0.0, 0.0),
+            rot: Quat::from_rotation_x(1.5708),
+        };
         let mut m = Manifold::default();
         collide(a, (0.2, 0.3), c, (0.2, 0.3), 0.05, &mut m);
         assert_eq!(m.len, 1);

@@ -11,9 +11,9 @@ mod box_frame;
 mod box_plane;
 mod capsule_capsule;
 mod mesh;
-mod parry;
 #[cfg(test)]
 mod parity_tests;
+mod parry;
 mod polygon;
 pub(crate) mod query;
 mod ray_interval;
@@ -26,9 +26,9 @@ use bevy::prelude::*;
 use crate::collider::{Shape, ShapeKind};
 use crate::world::{ColliderEntry, Manifold};
 
-pub(crate) use parry::{posed_aabb, unit_mass};
 #[cfg(feature = "bench-internals")]
 pub(crate) use parry::collide as parry_collide;
+pub(crate) use parry::{posed_aabb, unit_mass};
 
 /// A shape at a pose.
 #[derive(Clone, Copy, Debug)]
@@ -112,17 +112,21 @@ fn box_plane(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
 pub(crate) const DISPATCH: [[Option<CollideFn>; ShapeKind::COUNT]; ShapeKind::COUNT] = {
     let p = Some(parry::collide as CollideFn);
     let m = Some(no_single as CollideFn);
-    let (ss, sb, sp) = (Some(sphere_sphere as CollideFn), Some(sphere_box as CollideFn), Some(sphere_plane as CollideFn));
+    let (ss, sb, sp) = (
+        Some(sphere_sphere as CollideFn),
+        Some(sphere_box as CollideFn),
+        Some(sphere_plane as CollideFn),
+    );
     let (bb, bp) = (Some(box_box as CollideFn), Some(box_plane as CollideFn));
     let cc = Some(capsule_capsule as CollideFn);
     [
         // Sphere Cuboid Capsule Cylinder Cone Hull TriMesh HeightField Plane
-        [ss, sb, p, p, p, p, m, m, sp],                      // Sphere
-        [None, bb, p, p, p, p, m, m, bp],                    // Cuboid
-        [None, None, cc, p, p, p, m, m, p],                  // Capsule
-        [None, None, None, p, p, p, m, m, p],                // Cylinder
-        [None, None, None, None, p, p, m, m, p],             // Cone
-        [None, None, None, None, None, p, m, m, p],          // Convex hull
+        [ss, sb, p, p, p, p, m, m, sp],             // Sphere
+        [None, bb, p, p, p, p, m, m, bp],           // Cuboid
+        [None, None, cc, p, p, p, m, m, p],         // Capsule
+        [None, None, None, p, p, p, m, m, p],       // Cylinder
+        [None, None, None, None, p, p, m, m, p],    // Cone
+        [None, None, None, None, None, p, m, m, p], // Convex hull
         [None, None, None, None, None, None, None, None, None], // TriMesh (never moved by contact)
         [None, None, None, None, None, None, None, None, None], // HeightField
         [None, None, None, None, None, None, None, None, None], // Plane (static only)
@@ -189,7 +193,11 @@ pub fn collide(
         // The deepest of its manifolds.
         let mut deepest: Option<(f32, Manifold)> = None;
         collide_each(a, ia, b, ib, margin, &mut |m| {
-            let d = m.points().iter().map(|p| -p.separation).fold(f32::MIN, f32::max);
+            let d = m
+                .points()
+                .iter()
+                .map(|p| -p.separation)
+                .fold(f32::MIN, f32::max);
             if deepest.as_ref().is_none_or(|(best, _)| d > *best) {
                 deepest = Some((d, m));
             }

@@ -18,9 +18,15 @@ trait RandomShape {
 impl RandomShape for Rnd {
     fn shape(&mut self, kind: u32) -> Shape {
         match kind {
-            0 => Shape::Sphere { radius: self.range(0.1, 1.0) },
+            0 => Shape::Sphere {
+                radius: self.range(0.1, 1.0),
+            },
             1 => Shape::Cuboid {
-                half_extents: Vec3::new(self.range(0.1, 1.0), self.range(0.1, 1.0), self.range(0.1, 1.0)),
+                half_extents: Vec3::new(
+                    self.range(0.1, 1.0),
+                    self.range(0.1, 1.0),
+                    self.range(0.1, 1.0),
+                ),
             },
             _ => Shape::Plane { half_extents: None },
         }
@@ -37,7 +43,11 @@ struct Outcome {
 }
 
 fn outcome(m: &Manifold) -> Outcome {
-    let deepest = m.points().iter().map(|p| p.separation).fold(f32::INFINITY, f32::min);
+    let deepest = m
+        .points()
+        .iter()
+        .map(|p| p.separation)
+        .fold(f32::INFINITY, f32::min);
     Outcome {
         touching: deepest <= 0.0,
         depth: -deepest,
@@ -64,16 +74,30 @@ fn compare(ka: u32, kb: u32, n: usize, seed: u64) -> ([usize; 5], f32) {
             _ => 0.0,
         };
         let dir = if kb == 2 { rb * Vec3::Y } else { rnd.dir() };
-        let d = reach(&sa) * rnd.range(0.3, 1.1) + if kb == 2 { 0.0 } else { reach(&sb) * rnd.range(0.3, 1.0) };
-        let a = Posed { shape: &sa, pos: dir * d, rot: rnd.rot() };
-        let b = Posed { shape: &sb, pos: Vec3::ZERO, rot: rb };
+        let d = reach(&sa) * rnd.range(0.3, 1.1)
+            + if kb == 2 {
+                0.0
+            } else {
+                reach(&sb) * rnd.range(0.3, 1.0)
+            };
+        let a = Posed {
+            shape: &sa,
+            pos: dir * d,
+            rot: rnd.rot(),
+        };
+        let b = Posed {
+            shape: &sb,
+            pos: Vec3::ZERO,
+            rot: rb,
+        };
         let f = DISPATCH[ka as usize][sb.kind() as usize].unwrap();
         let (mut ours, mut theirs) = (Manifold::default(), Manifold::default());
         f(a, b, margin, &mut ours);
         parry::collide(a, b, margin, &mut theirs);
         let (o, t) = (outcome(&ours), outcome(&theirs));
         // Within rounding of touching: either verdict is right.
-        let borderline = (o.depth.abs() < 1e-4 && ours.len > 0) || (t.depth.abs() < 1e-4 && theirs.len > 0);
+        let borderline =
+            (o.depth.abs() < 1e-4 && ours.len > 0) || (t.depth.abs() < 1e-4 && theirs.len > 0);
         if o.touching != t.touching && !borderline {
             counts[0] += 1;
         }
@@ -104,7 +128,13 @@ fn compare(ka: u32, kb: u32, n: usize, seed: u64) -> ([usize; 5], f32) {
 #[test]
 fn our_pairs_agree_with_parry() {
     let n = 4000;
-    let pairs = [(0, 0, "sphere–sphere"), (0, 1, "sphere–box"), (1, 1, "box–box"), (0, 2, "sphere–plane"), (1, 2, "box–plane")];
+    let pairs = [
+        (0, 0, "sphere–sphere"),
+        (0, 1, "sphere–box"),
+        (1, 1, "box–box"),
+        (0, 2, "sphere–plane"),
+        (1, 2, "box–plane"),
+    ];
     let mut report = String::new();
     let mut results = vec![];
     for (i, &(ka, kb, name)) in pairs.iter().enumerate() {
@@ -117,13 +147,26 @@ fn our_pairs_agree_with_parry() {
     }
     println!("{report}");
     for (name, c, worst) in results {
-        assert!(c[4] > n / 3, "{name}: too few touching poses to compare\n{report}");
+        assert!(
+            c[4] > n / 3,
+            "{name}: too few touching poses to compare\n{report}"
+        );
         assert_eq!(c[0], 0, "{name}: touching verdicts differ\n{report}");
         if name == "box–box" {
-            assert!(c[1] * 20 < c[4], "box–box: more than 5 % of normals differ\n{report}");
-            assert!(worst <= 0.005 + 1e-4, "box–box: depth beyond the edge tolerance\n{report}");
+            assert!(
+                c[1] * 20 < c[4],
+                "box–box: more than 5 % of normals differ\n{report}"
+            );
+            assert!(
+                worst <= 0.005 + 1e-4,
+                "box–box: depth beyond the edge tolerance\n{report}"
+            );
         } else {
-            assert_eq!(c[1] + c[2] + c[3], 0, "{name}: disagrees with parry\n{report}");
+            assert_eq!(
+                c[1] + c[2] + c[3],
+                0,
+                "{name}: disagrees with parry\n{report}"
+            );
         }
     }
 }

@@ -134,9 +134,8 @@ pub(crate) fn collide(a: Posed, b: Posed, margin: f32, out: &mut Manifold) {
         for (k, c) in m.points.iter().enumerate() {
             // Clipped points are not filtered by the prediction distance: we do. A
             // bounded plane keeps only what lies over its rectangle.
-            let outside = rect.is_some_and(|h| {
-                c.local_p2.x.abs() > h.x || c.local_p2.z.abs() > h.y
-            });
+            let outside =
+                rect.is_some_and(|h| c.local_p2.x.abs() > h.x || c.local_p2.z.abs() > h.y);
             if c.dist > margin || outside {
                 continue;
             }
@@ -198,8 +197,13 @@ mod tests {
         });
         let ms = 4.0 / 3.0 * PI * r.powi(3);
         assert!(near(v, vc + ms, 1e-5), "{v}");
-        assert!(near(i.y, vc * r * r / 2.0 + ms * 0.4 * r * r, 1e-4), "{}", i.y);
-        let ix = vc * (3.0 * r * r + 4.0 * h * h) / 12.0 + ms * (0.4 * r * r + h * h + 0.75 * h * r);
+        assert!(
+            near(i.y, vc * r * r / 2.0 + ms * 0.4 * r * r, 1e-4),
+            "{}",
+            i.y
+        );
+        let ix =
+            vc * (3.0 * r * r + 4.0 * h * h) / 12.0 + ms * (0.4 * r * r + h * h + 0.75 * h * r);
         assert!(near(i.x, ix, 1e-4), "{} vs {ix}", i.x);
         // Cone (height H = 2h): V = πr²H/3; about its centre of mass
         // I_y = 3/10 V r², I_x = V (3r²/20 + 3H²/80).
@@ -210,7 +214,11 @@ mod tests {
         let vk = PI * r * r * 2.0 * h / 3.0;
         assert!(near(v, vk, 1e-5));
         assert!(near(i.y, 0.3 * vk * r * r, 1e-4));
-        assert!(near(i.x, vk * (3.0 * r * r / 20.0 + 3.0 * 4.0 * h * h / 80.0), 1e-4));
+        assert!(near(
+            i.x,
+            vk * (3.0 * r * r / 20.0 + 3.0 * 4.0 * h * h / 80.0),
+            1e-4
+        ));
     }
 
     #[test]
@@ -239,7 +247,8 @@ mod tests {
             assert!((p.separation + 0.001).abs() < 1e-5, "{p:?}");
         }
         let xs: Vec<f32> = m.points().iter().map(|p| p.point.x).collect();
-        let span = xs.iter().cloned().fold(f32::MIN, f32::max) - xs.iter().cloned().fold(f32::MAX, f32::min);
+        let span = xs.iter().cloned().fold(f32::MIN, f32::max)
+            - xs.iter().cloned().fold(f32::MAX, f32::min);
         assert!((span - 1.0).abs() < 1e-4, "points span the segment: {xs:?}");
     }
 }

@@ -41,7 +41,10 @@ pub(crate) fn cast_ray(
     {
         return cast_ray_rect(h, (pos, rot), origin, dir, max_distance);
     }
-    if matches!(shape, Shape::Capsule { .. } | Shape::Cylinder { .. } | Shape::Cone { .. }) {
+    if matches!(
+        shape,
+        Shape::Capsule { .. } | Shape::Cylinder { .. } | Shape::Cone { .. }
+    ) {
         return cast_ray_round(shape, (pos, rot), origin, dir, max_distance, solid);
     }
     let local = query_shape(shape);
@@ -50,7 +53,11 @@ pub(crate) fn cast_ray(
         .shape()
         .cast_ray_and_get_normal(&pose(pos, rot), &ray, max_distance, solid)?;
     // From inside a solid: distance 0, facing back along the ray.
-    let normal = if hit.time_of_impact == 0.0 && solid { -dir } else { hit.normal };
+    let normal = if hit.time_of_impact == 0.0 && solid {
+        -dir
+    } else {
+        hit.normal
+    };
     Some((hit.time_of_impact, normal))
 }
 
@@ -125,7 +132,12 @@ pub(crate) fn cast_shape(
     // Witnesses and normals come back in each shape's own frame.
     let point = pb * hit.witness2;
     let mut normal = (pb.rotation * hit.normal2).normalize_or_zero();
-    if matches!(target, Shape::Plane { half_extents: Some(_) }) {
+    if matches!(
+        target,
+        Shape::Plane {
+            half_extents: Some(_)
+        }
+    ) {
         // A flat rectangle's normal is either face's: the one toward the moving shape.
         let up = pb.rotation * Vec3::Y;
         let side = (origin + dir * hit.time_of_impact - pos).dot(up);
@@ -149,22 +161,29 @@ pub(crate) fn project_point(
 
 /// Whether `point` lies inside (or on) a posed shape.
 pub(crate) fn contains_point(shape: &Shape, (pos, rot): (Vec3, Quat), point: Vec3) -> bool {
-    query_shape(shape).shape().contains_point(&pose(pos, rot), point)
+    query_shape(shape)
+        .shape()
+        .contains_point(&pose(pos, rot), point)
 }
 
 /// Whether two posed shapes overlap (touching counts).
 pub(crate) fn intersects(a: &Shape, pa: (Vec3, Quat), b: &Shape, pb: (Vec3, Quat)) -> bool {
     let (sa, sb) = (query_shape(a), query_shape(b));
     let (ga, gb): (&dyn ParryShape, &dyn ParryShape) = (sa.shape(), sb.shape());
-    parry3d::query::intersection_test(&pose(pa.0, pa.1), ga, &pose(pb.0, pb.1), gb)
-        .unwrap_or(false)
+    parry3d::query::intersection_test(&pose(pa.0, pa.1), ga, &pose(pb.0, pb.1), gb).unwrap_or(false)
 }
 
 /// The entry and exit distances of a ray (unit or not: in multiples of `dir`) through
 /// the box [lo, hi], clipped to [0, max]; `None` when it misses. The slab test: every
 /// candidate box is tested with it before the exact cast.
 #[inline]
-pub(crate) fn ray_aabb(origin: Vec3, dir: Vec3, max: f32, lo: Vec3, hi: Vec3) -> Option<(f32, f32)> {
+pub(crate) fn ray_aabb(
+    origin: Vec3,
+    dir: Vec3,
+    max: f32,
+    lo: Vec3,
+    hi: Vec3,
+) -> Option<(f32, f32)> {
     let inv = dir.recip();
     let (t0, t1) = ((lo - origin) * inv, (hi - origin) * inv);
     // A zero direction component gives ±inf (or NaN on the slab's plane: treated as in).
@@ -199,12 +218,40 @@ mod tests {
         let (r, h) = (0.5f32, 0.75f32);
         let cases = [
             (Shape::Sphere { radius: r }, r),
-            (Shape::Cuboid { half_extents: Vec3::new(0.4, h, 0.3) }, h),
-            (Shape::Capsule { radius: r, half_height: h }, h + r),
-            (Shape::Cylinder { radius: r, half_height: h }, h),
-            (Shape::Cone { radius: r, half_height: h }, h),
+            (
+                Shape::Cuboid {
+                    half_extents: Vec3::new(0.4, h, 0.3),
+                },
+                h,
+            ),
+            (
+                Shape::Capsule {
+                    radius: r,
+                    half_height: h,
+                },
+                h + r,
+            ),
+            (
+                Shape::Cylinder {
+                    radius: r,
+                    half_height: h,
+                },
+                h,
+            ),
+            (
+                Shape::Cone {
+                    radius: r,
+                    half_height: h,
+                },
+                h,
+            ),
             (Shape::Plane { half_extents: None }, 0.0),
-            (Shape::Plane { half_extents: Some(Vec2::splat(2.0)) }, 0.0),
+            (
+                Shape::Plane {
+                    half_extents: Some(Vec2::splat(2.0)),
+                },
+                0.0,
+            ),
         ];
         for (shape, top) in cases {
             let origin = AT.0 + Vec3::Y * 10.0;
@@ -213,7 +260,9 @@ mod tests {
             assert!(close(n, Vec3::Y), "{shape:?}: {n}");
         }
         // A box's top face from 30° off the vertical: distance (10 − h)/cos 30°.
-        let cuboid = Shape::Cuboid { half_extents: Vec3::splat(h) };
+        let cuboid = Shape::Cuboid {
+            half_extents: Vec3::splat(h),
+        };
         let dir = Vec3::new(FRAC_PI_6.sin(), -FRAC_PI_6.cos(), 0.0);
         // Aimed at the face's centre: it starts (10 − h)·tan 30° to the side.
         let origin = AT.0 + Vec3::new(-(10.0 - h) * FRAC_PI_6.tan(), 10.0, 0.0);
@@ -223,8 +272,15 @@ mod tests {
         // A sphere grazed off-centre: the chord's near end at distance 10 − √(r² − b²).
         let b = 0.3f32;
         let sphere = Shape::Sphere { radius: r };
-        let (d, n) = cast_ray(&sphere, AT, AT.0 + Vec3::new(b, 10.0, 0.0), Vec3::NEG_Y, 100.0, true)
-            .unwrap();
+        let (d, n) = cast_ray(
+            &sphere,
+            AT,
+            AT.0 + Vec3::new(b, 10.0, 0.0),
+            Vec3::NEG_Y,
+            100.0,
+            true,
+        )
+        .unwrap();
         let y = (r * r - b * b).sqrt();
         assert!((d - (10.0 - y)).abs() < 1e-5, "{d}");
         assert!(close(n, Vec3::new(b, y, 0.0) / r), "{n}");
@@ -234,13 +290,29 @@ mod tests {
     fn a_turned_box_is_hit_on_its_turned_face() {
         // A unit cube turned 45° about z: a ray along −x meets its edge at √2·½.
         let rot = Quat::from_rotation_z(FRAC_PI_4);
-        let cube = Shape::Cuboid { half_extents: Vec3::splat(0.5) };
-        let (d, _) = cast_ray(&cube, (Vec3::ZERO, rot), Vec3::new(5.0, 0.0, 0.0), Vec3::NEG_X, 10.0, true)
-            .unwrap();
+        let cube = Shape::Cuboid {
+            half_extents: Vec3::splat(0.5),
+        };
+        let (d, _) = cast_ray(
+            &cube,
+            (Vec3::ZERO, rot),
+            Vec3::new(5.0, 0.0, 0.0),
+            Vec3::NEG_X,
+            10.0,
+            true,
+        )
+        .unwrap();
         assert!((d - (5.0 - 0.5 * 2f32.sqrt())).abs() < 1e-5, "{d}");
         // Just above the edge the ray meets the upper right face, normal (1, 1, 0)/√2.
-        let (_, n) = cast_ray(&cube, (Vec3::ZERO, rot), Vec3::new(5.0, 0.1, 0.0), Vec3::NEG_X, 10.0, true)
-            .unwrap();
+        let (_, n) = cast_ray(
+            &cube,
+            (Vec3::ZERO, rot),
+            Vec3::new(5.0, 0.1, 0.0),
+            Vec3::NEG_X,
+            10.0,
+            true,
+        )
+        .unwrap();
         assert!(close(n, Vec3::new(1.0, 1.0, 0.0).normalize()), "{n}");
     }
 
@@ -255,17 +327,41 @@ mod tests {
         assert!(cast_ray(&sphere, AT, AT.0 + Vec3::X * 5.0, Vec3::X, 10.0, true).is_none());
         assert!(cast_ray(&sphere, AT, AT.0 + Vec3::X * 5.0, Vec3::NEG_X, 3.9, true).is_none());
         // A bounded plane is missed beside its rectangle; an infinite one is not.
-        let tile = Shape::Plane { half_extents: Some(Vec2::ONE) };
+        let tile = Shape::Plane {
+            half_extents: Some(Vec2::ONE),
+        };
         let beside = Vec3::new(1.5, 5.0, 0.0);
-        assert!(cast_ray(&tile, (Vec3::ZERO, Quat::IDENTITY), beside, Vec3::NEG_Y, 10.0, true).is_none());
+        assert!(
+            cast_ray(
+                &tile,
+                (Vec3::ZERO, Quat::IDENTITY),
+                beside,
+                Vec3::NEG_Y,
+                10.0,
+                true
+            )
+            .is_none()
+        );
         let floor = Shape::Plane { half_extents: None };
-        assert!(cast_ray(&floor, (Vec3::ZERO, Quat::IDENTITY), beside, Vec3::NEG_Y, 10.0, true).is_some());
+        assert!(
+            cast_ray(
+                &floor,
+                (Vec3::ZERO, Quat::IDENTITY),
+                beside,
+                Vec3::NEG_Y,
+                10.0,
+                true
+            )
+            .is_some()
+        );
     }
 
     #[test]
     fn a_cast_ball_stops_one_radius_short_of_a_wall() {
         let ball = Shape::Sphere { radius: 0.25 };
-        let wall = Shape::Cuboid { half_extents: Vec3::new(0.5, 2.0, 2.0) };
+        let wall = Shape::Cuboid {
+            half_extents: Vec3::new(0.5, 2.0, 2.0),
+        };
         let (d, point, normal) = cast_shape(
             &ball,
             (Vec3::new(-5.0, 0.3, 0.0), Quat::IDENTITY),
@@ -277,14 +373,29 @@ mod tests {
         .unwrap();
         assert!((d - (5.0 - 0.5 - 0.25)).abs() < 1e-4, "{d}");
         assert!(close(normal, Vec3::NEG_X), "{normal}");
-        assert!(point.abs_diff_eq(Vec3::new(-0.5, 0.3, 0.0), 1e-4), "{point}");
+        assert!(
+            point.abs_diff_eq(Vec3::new(-0.5, 0.3, 0.0), 1e-4),
+            "{point}"
+        );
         // Too short a cast misses.
-        assert!(cast_shape(&ball, (Vec3::new(-5.0, 0.3, 0.0), Quat::IDENTITY), Vec3::X, 4.0, &wall, (Vec3::ZERO, Quat::IDENTITY)).is_none());
+        assert!(
+            cast_shape(
+                &ball,
+                (Vec3::new(-5.0, 0.3, 0.0), Quat::IDENTITY),
+                Vec3::X,
+                4.0,
+                &wall,
+                (Vec3::ZERO, Quat::IDENTITY)
+            )
+            .is_none()
+        );
     }
 
     #[test]
     fn points_project_onto_the_nearest_surface() {
-        let cube = Shape::Cuboid { half_extents: Vec3::splat(1.0) };
+        let cube = Shape::Cuboid {
+            half_extents: Vec3::splat(1.0),
+        };
         let (p, inside) = project_point(&cube, AT, AT.0 + Vec3::new(3.0, 0.5, 0.0), true);
         assert!(!inside && close(p, AT.0 + Vec3::new(1.0, 0.5, 0.0)));
         let (p, inside) = project_point(&cube, AT, AT.0 + Vec3::new(0.8, 0.0, 0.0), false);
@@ -292,8 +403,18 @@ mod tests {
         assert!(contains_point(&cube, AT, AT.0 + Vec3::splat(0.9)));
         assert!(!contains_point(&cube, AT, AT.0 + Vec3::splat(1.1)));
         let ball = Shape::Sphere { radius: 0.5 };
-        assert!(intersects(&cube, AT, &ball, (AT.0 + Vec3::X * 1.45, Quat::IDENTITY)));
-        assert!(!intersects(&cube, AT, &ball, (AT.0 + Vec3::X * 1.55, Quat::IDENTITY)));
+        assert!(intersects(
+            &cube,
+            AT,
+            &ball,
+            (AT.0 + Vec3::X * 1.45, Quat::IDENTITY)
+        ));
+        assert!(!intersects(
+            &cube,
+            AT,
+            &ball,
+            (AT.0 + Vec3::X * 1.55, Quat::IDENTITY)
+        ));
     }
 
     #[test]

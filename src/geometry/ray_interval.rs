@@ -57,7 +57,10 @@ fn roots(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
 /// The two crossings of the slab |y| ≤ h, or the whole line when parallel inside it.
 fn slab(h: f64, o: DVec3, d: DVec3) -> Option<(Cross, Cross)> {
     if d.y == 0.0 {
-        return (o.y.abs() <= h).then_some(((f64::NEG_INFINITY, DVec3::ZERO), (f64::INFINITY, DVec3::ZERO)));
+        return (o.y.abs() <= h).then_some((
+            (f64::NEG_INFINITY, DVec3::ZERO),
+            (f64::INFINITY, DVec3::ZERO),
+        ));
     }
     let (ta, tb) = ((-h - o.y) / d.y, (h - o.y) / d.y);
     // Entering through the bottom face going up, or the top face going down.
@@ -78,7 +81,10 @@ fn tube(r: f64, o: DVec3, d: DVec3) -> Option<(Cross, Cross)> {
     };
     if a == 0.0 {
         // Along the axis: inside all the way or never.
-        return (c <= 0.0).then_some(((f64::NEG_INFINITY, DVec3::ZERO), (f64::INFINITY, DVec3::ZERO)));
+        return (c <= 0.0).then_some((
+            (f64::NEG_INFINITY, DVec3::ZERO),
+            (f64::INFINITY, DVec3::ZERO),
+        ));
     }
     let (t0, t1) = roots(a, 2.0 * (o.x * d.x + o.z * d.z), c)?;
     Some(((t0, radial(t0)), (t1, radial(t1))))
@@ -87,7 +93,11 @@ fn tube(r: f64, o: DVec3, d: DVec3) -> Option<(Cross, Cross)> {
 /// The crossings of a ball of radius `r` at `centre`.
 fn ball(r: f64, centre: DVec3, o: DVec3, d: DVec3) -> Option<(Cross, Cross)> {
     let oc = o - centre;
-    let (t0, t1) = roots(d.length_squared(), 2.0 * oc.dot(d), oc.length_squared() - r * r)?;
+    let (t0, t1) = roots(
+        d.length_squared(),
+        2.0 * oc.dot(d),
+        oc.length_squared() - r * r,
+    )?;
     let normal = |t: f64| (oc + d * t).normalize_or_zero();
     Some(((t0, normal(t0)), (t1, normal(t1))))
 }
@@ -151,11 +161,14 @@ fn cone(r: f64, h: f64, o: DVec3, d: DVec3) -> Option<(Cross, Cross)> {
         }
     } else if b != 0.0 {
         let t = -c / b;
-        [Some(if b > 0.0 {
-            (neg_inf(DVec3::ZERO), (t, normal(t)))
-        } else {
-            ((t, normal(t)), inf(DVec3::ZERO))
-        }), None]
+        [
+            Some(if b > 0.0 {
+                (neg_inf(DVec3::ZERO), (t, normal(t)))
+            } else {
+                ((t, normal(t)), inf(DVec3::ZERO))
+            }),
+            None,
+        ]
     } else {
         return None;
     };
@@ -179,16 +192,31 @@ mod tests {
 
     #[test]
     fn a_line_through_the_cone_meets_its_side_and_base() {
-        let cone = Shape::Cone { radius: 1.0, half_height: 1.0 };
+        let cone = Shape::Cone {
+            radius: 1.0,
+            half_height: 1.0,
+        };
         // Cone r = 1, h = 1 (height 2): along x at y = 0 the radius is 0.5.
         let ((t0, n0), (t1, n1)) = run(&cone, Vec3::new(-5.0, 0.0, 0.0), Vec3::X).unwrap();
-        assert!((t0 - 4.5).abs() < 1e-6 && (t1 - 5.5).abs() < 1e-6, "{t0} {t1}");
+        assert!(
+            (t0 - 4.5).abs() < 1e-6 && (t1 - 5.5).abs() < 1e-6,
+            "{t0} {t1}"
+        );
         // The side leans in by atan(r/2h): its normal is (−2, 1, 0)/√5 on the −x side.
-        assert!(n0.abs_diff_eq(Vec3::new(-2.0, 1.0, 0.0) / 5f32.sqrt(), 1e-6), "{n0}");
-        assert!(n1.abs_diff_eq(Vec3::new(2.0, 1.0, 0.0) / 5f32.sqrt(), 1e-6), "{n1}");
+        assert!(
+            n0.abs_diff_eq(Vec3::new(-2.0, 1.0, 0.0) / 5f32.sqrt(), 1e-6),
+            "{n0}"
+        );
+        assert!(
+            n1.abs_diff_eq(Vec3::new(2.0, 1.0, 0.0) / 5f32.sqrt(), 1e-6),
+            "{n1}"
+        );
         // Straight up through the base, out at the tip.
         let ((t0, n0), (t1, _)) = run(&cone, Vec3::new(0.0, -5.0, 0.0), Vec3::Y).unwrap();
-        assert!((t0 - 4.0).abs() < 1e-6 && (t1 - 6.0).abs() < 1e-5, "{t0} {t1}");
+        assert!(
+            (t0 - 4.0).abs() < 1e-6 && (t1 - 6.0).abs() < 1e-5,
+            "{t0} {t1}"
+        );
         assert_eq!(n0, Vec3::NEG_Y);
         // Above the tip, beside it: a miss (the upper cone does not count).
         assert!(run(&cone, Vec3::new(-5.0, 1.5, 0.0), Vec3::X).is_none());
@@ -196,11 +224,16 @@ mod tests {
 
     #[test]
     fn a_capsule_is_its_cylinder_and_its_caps() {
-        let capsule = Shape::Capsule { radius: 0.5, half_height: 1.0 };
+        let capsule = Shape::Capsule {
+            radius: 0.5,
+            half_height: 1.0,
+        };
         let ((t, n), _) = run(&capsule, Vec3::new(0.0, 5.0, 0.0), Vec3::NEG_Y).unwrap();
         assert!((t - 3.5).abs() < 1e-6 && n == Vec3::Y, "{t} {n}");
         let ((t, n), (t1, _)) = run(&capsule, Vec3::new(-5.0, 0.3, 0.0), Vec3::X).unwrap();
-        assert!((t - 4.5).abs() < 1e-6 && n.abs_diff_eq(Vec3::NEG_X, 1e-6) && (t1 - 5.5).abs() < 1e-6);
+        assert!(
+            (t - 4.5).abs() < 1e-6 && n.abs_diff_eq(Vec3::NEG_X, 1e-6) && (t1 - 5.5).abs() < 1e-6
+        );
         assert!(run(&capsule, Vec3::new(-5.0, 0.0, 0.6), Vec3::X).is_none());
     }
 }

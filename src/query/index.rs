@@ -63,12 +63,19 @@ impl AwakeIndex {
             });
         }
         let poses = &self.poses;
-        self.index
-            .rebuild(poses.len(), |i| (poses[i as usize].lo, poses[i as usize].hi));
+        self.index.rebuild(poses.len(), |i| {
+            (poses[i as usize].lo, poses[i as usize].hi)
+        });
         self.fixed_extent = if world.fixed.is_searchable() {
             world.fixed.extent()
         } else {
-            finite_union(world.fixed.entries().iter().map(|c| (c.aabb_min, c.aabb_max)))
+            finite_union(
+                world
+                    .fixed
+                    .entries()
+                    .iter()
+                    .map(|c| (c.aabb_min, c.aabb_max)),
+            )
         };
         self.built_for = Some((world.step_count, world.colliders.len()));
     }

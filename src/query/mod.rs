@@ -29,8 +29,8 @@ use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 
 pub use filter::SpatialQueryFilter;
-use index::{AwakeIndex, Candidate};
 pub use index::SpatialQueryCache;
+use index::{AwakeIndex, Candidate};
 
 use crate::collider::{Collider, Shape};
 use crate::geometry::query as exact;
@@ -126,12 +126,20 @@ impl SpatialQuery<'_> {
         predicate: &dyn Fn(Entity) -> bool,
     ) -> Option<RayHitData> {
         let mut best: Option<(RayHitData, u64)> = None;
-        self.ray_walk(origin, direction, max_distance, solid, filter, predicate, |hit, key| {
-            if best.is_none_or(|(b, k)| (hit.distance, key) < (b.distance, k)) {
-                best = Some((hit, key));
-            }
-            true
-        });
+        self.ray_walk(
+            origin,
+            direction,
+            max_distance,
+            solid,
+            filter,
+            predicate,
+            |hit, key| {
+                if best.is_none_or(|(b, k)| (hit.distance, key) < (b.distance, k)) {
+                    best = Some((hit, key));
+                }
+                true
+            },
+        );
         best.map(|(hit, _)| hit)
     }
 
@@ -147,10 +155,18 @@ impl SpatialQuery<'_> {
         filter: &SpatialQueryFilter,
     ) -> Vec<RayHitData> {
         let mut hits = Vec::new();
-        self.ray_walk(origin, direction, max_distance, solid, filter, &any, |hit, key| {
-            hits.push((hit, key));
-            true
-        });
+        self.ray_walk(
+            origin,
+            direction,
+            max_distance,
+            solid,
+            filter,
+            &any,
+            |hit, key| {
+                hits.push((hit, key));
+                true
+            },
+        );
         hits.sort_by(|a, b| a.0.distance.total_cmp(&b.0.distance).then(a.1.cmp(&b.1)));
         hits.truncate(max_hits);
         hits.into_iter().map(|(hit, _)| hit).collect()
@@ -167,9 +183,15 @@ impl SpatialQuery<'_> {
         filter: &SpatialQueryFilter,
         mut callback: impl FnMut(RayHitData) -> bool,
     ) {
-        self.ray_walk(origin, direction, max_distance, solid, filter, &any, |hit, _| {
-            callback(hit)
-        });
+        self.ray_walk(
+            origin,
+            direction,
+            max_distance,
+            solid,
+            filter,
+            &any,
+            |hit, _| callback(hit),
+        );
     }
 
     /// The first collider that `shape`, turned by `rotation` and moved from `origin`
@@ -203,9 +225,14 @@ impl SpatialQuery<'_> {
                 return;
             }
             let target = &c.entry.shape;
-            if let Some((d, point, normal)) =
-                exact::cast_shape(&shape.shape, (origin, rotation), dir, max_distance, target, c.pose)
-            {
+            if let Some((d, point, normal)) = exact::cast_shape(
+                &shape.shape,
+                (origin, rotation),
+                dir,
+                max_distance,
+                target,
+                c.pose,
+            ) {
                 let key = c.entry.key;
                 if best.is_none_or(|(b, k)| (d, key) < (b.distance, k)) {
                     let hit = ShapeHitData {
@@ -224,13 +251,20 @@ impl SpatialQuery<'_> {
 
     /// Every collider that contains `point` (on its surface counts), in spawn order.
     pub fn point_intersections(&self, point: Vec3, filter: &SpatialQueryFilter) -> Vec<Entity> {
-        self.collect(point, point, filter, |c| exact::contains_point(&c.entry.shape, c.pose, point))
+        self.collect(point, point, filter, |c| {
+            exact::contains_point(&c.entry.shape, c.pose, point)
+        })
     }
 
     /// Every collider whose bounding box overlaps the box [`min`, `max`] (m), in spawn
     /// order: a broad test, not the shapes themselves (but for an infinite plane, whose
     /// box would be all of space: it counts when the box reaches below it).
-    pub fn aabb_intersections(&self, min: Vec3, max: Vec3, filter: &SpatialQueryFilter) -> Vec<Entity> {
+    pub fn aabb_intersections(
+        &self,
+        min: Vec3,
+        max: Vec3,
+        filter: &SpatialQueryFilter,
+    ) -> Vec<Entity> {
         let region = Shape::Cuboid {
             half_extents: ((max - min) * 0.5).max(Vec3::ZERO),
         };
@@ -315,7 +349,8 @@ impl SpatialQuery<'_> {
         if self.cache.brute_force() {
             return self.cache.with(world, |index| index.all(world, found));
         }
-        self.cache.with(world, |index| index.overlapping(world, lo, hi, found));
+        self.cache
+            .with(world, |index| index.overlapping(world, lo, hi, found));
     }
 
     /// The entities among the colliders meeting [lo, hi] that pass `filter` and `test`,

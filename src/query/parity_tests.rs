@@ -23,7 +23,12 @@ trait RandomCollider {
 
 impl RandomCollider for Rnd {
     fn rot_xyz(&mut self) -> Quat {
-        Quat::from_euler(EulerRot::XYZ, self.range(0.0, 6.3), self.range(0.0, 6.3), self.range(0.0, 6.3))
+        Quat::from_euler(
+            EulerRot::XYZ,
+            self.range(0.0, 6.3),
+            self.range(0.0, 6.3),
+            self.range(0.0, 6.3),
+        )
     }
     fn collider(&mut self) -> Collider {
         let (a, b) = (self.range(0.1, 0.8), self.range(0.1, 0.8));
@@ -53,7 +58,11 @@ fn scene(seed: u64) -> App {
             let fixed = if rnd.unit() < 0.3 {
                 Collider::plane_rect(rnd.range(0.5, 3.0), rnd.range(0.5, 3.0))
             } else {
-                Collider::cuboid(rnd.range(0.2, 4.0), rnd.range(0.1, 1.0), rnd.range(0.2, 4.0))
+                Collider::cuboid(
+                    rnd.range(0.2, 4.0),
+                    rnd.range(0.1, 1.0),
+                    rnd.range(0.2, 4.0),
+                )
             };
             world.spawn((fixed, tf, layers))
         } else {
@@ -95,7 +104,11 @@ fn indexed_queries_answer_what_brute_force_answers() {
         for _ in 0..150 {
             let origin = rnd.vec(-20.0, 20.0).with_y(rnd.range(-1.0, 14.0));
             let dir = Dir3::new(rnd.vec(-1.0, 1.0)).unwrap_or(Dir3::NEG_Y);
-            let max = if rnd.unit() < 0.3 { f32::MAX } else { rnd.range(1.0, 40.0) };
+            let max = if rnd.unit() < 0.3 {
+                f32::MAX
+            } else {
+                rnd.range(1.0, 40.0)
+            };
             let solid = rnd.unit() < 0.5;
             let f = filter(&mut rnd);
             let shape = rnd.collider();
@@ -111,7 +124,10 @@ fn indexed_queries_answer_what_brute_force_answers() {
                     q.ray_hits(origin, dir, max, usize::MAX, solid, &f),
                     q.cast_shape(&shape, origin, rot, dir, max.min(60.0), &f),
                     q.point_intersections(lo, &f),
-                    (q.aabb_intersections(lo, hi, &f), q.shape_intersections(&shape, lo, rot, &f)),
+                    (
+                        q.aabb_intersections(lo, hi, &f),
+                        q.shape_intersections(&shape, lo, rot, &f),
+                    ),
                     q.project_point(origin, solid, &f),
                 )
             };
@@ -121,7 +137,10 @@ fn indexed_queries_answer_what_brute_force_answers() {
             assert_eq!(indexed.1, reference.1, "ray_hits seed {seed}");
             assert_eq!(indexed.2, reference.2, "cast_shape seed {seed}");
             assert_eq!(indexed.3, reference.3, "point_intersections seed {seed}");
-            assert_eq!(indexed.4, reference.4, "aabb / shape intersections seed {seed}");
+            assert_eq!(
+                indexed.4, reference.4,
+                "aabb / shape intersections seed {seed}"
+            );
             assert_eq!(indexed.5, reference.5, "project_point seed {seed}");
             compared[0] += indexed.0.is_some() as usize;
             compared[1] += indexed.1.len();
@@ -132,5 +151,8 @@ fn indexed_queries_answer_what_brute_force_answers() {
         }
     }
     // The comparisons were not all of empty answers.
-    assert!(compared.iter().all(|&n| n > 20), "too few hits to compare: {compared:?}");
+    assert!(
+        compared.iter().all(|&n| n > 20),
+        "too few hits to compare: {compared:?}"
+    );
 }

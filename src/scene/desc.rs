@@ -213,7 +213,13 @@ impl MeshDesc {
     /// The collider and its pose.
     pub fn collider(&self) -> Result<(Collider, Transform), String> {
         match self {
-            MeshDesc::Heightfield { position, size, samples, amplitude, wavelength } => {
+            MeshDesc::Heightfield {
+                position,
+                size,
+                samples,
+                amplitude,
+                wavelength,
+            } => {
                 let (nx, nz) = (samples.x.max(2) as usize, samples.y.max(2) as usize);
                 let k = std::f32::consts::TAU / wavelength;
                 let heights: Vec<Vec<f32>> = (0..nx)
@@ -230,7 +236,12 @@ impl MeshDesc {
                 let c = Collider::heightfield(&heights, *size)?;
                 Ok((c, Transform::from_translation(*position)))
             }
-            MeshDesc::TriMesh { position, rotation_deg, vertices, triangles } => {
+            MeshDesc::TriMesh {
+                position,
+                rotation_deg,
+                vertices,
+                triangles,
+            } => {
                 let c = Collider::trimesh(vertices.clone(), triangles.clone())?;
                 let r = *rotation_deg * (std::f32::consts::PI / 180.0);
                 let rot = Quat::from_euler(EulerRot::XYZ, r.x, r.y, r.z);

@@ -27,7 +27,9 @@ pub fn rock_points(radius: f32, seed: u64) -> Vec<Vec3> {
             let y = 1.0 - 2.0 * (i as f32 + 0.5) / n as f32;
             let ring = (1.0 - y * y).sqrt();
             let a = golden * i as f32;
-            Vec3::new(ring * a.cos(), y, ring * a.sin()) * radius * (2.0 / 3.0 + 2.0 / 3.0 * rng.next())
+            Vec3::new(ring * a.cos(), y, ring * a.sin())
+                * radius
+                * (2.0 / 3.0 + 2.0 / 3.0 * rng.next())
         })
         .collect()
 }

@@ -59,7 +59,8 @@ impl BoundsIndex {
                 self.wide.push(i);
             }
         }
-        self.sorted.sort_by(|&a, &b| aabb(a).0.x.total_cmp(&aabb(b).0.x));
+        self.sorted
+            .sort_by(|&a, &b| aabb(a).0.x.total_cmp(&aabb(b).0.x));
     }
 
     /// Calls `found` with every box that overlaps [lo, hi] (`aabb` as at the rebuild).

@@ -238,13 +238,22 @@ impl Anchoring {
     /// a rolling motion applies (`None`: they turn with their bodies). Once per
     /// constraint, not per point.
     #[inline]
-    pub(crate) fn turned(&self, arms: &[RollingArms], a: &SolverBody, b: &SolverBody) -> Option<Turned> {
+    pub(crate) fn turned(
+        &self,
+        arms: &[RollingArms],
+        a: &SolverBody,
+        b: &SolverBody,
+    ) -> Option<Turned> {
         if !self.rolls() {
             return None;
         }
         let m = arms[self.roll as usize];
         let side = |dq: Quat, arm: Vec3, axis: Vec3| {
-            let rot = if axis == Vec3::ZERO { dq } else { swing(dq, axis) };
+            let rot = if axis == Vec3::ZERO {
+                dq
+            } else {
+                swing(dq, axis)
+            };
             (rot, dq * arm - arm)
         };
         let (ra, sa) = side(a.dq, m.arm[0], m.axis[0]);
@@ -271,8 +280,16 @@ impl Anchoring {
             let cb = if self.turn[1] { b.dq * p.rb } else { p.rb };
             return (ca, cb);
         };
-        let ca = if self.turn[0] { t.rot[0] * p.ra } else { p.ra + t.shift[0] };
-        let cb = if self.turn[1] { t.rot[1] * p.rb } else { p.rb + t.shift[1] };
+        let ca = if self.turn[0] {
+            t.rot[0] * p.ra
+        } else {
+            p.ra + t.shift[0]
+        };
+        let cb = if self.turn[1] {
+            t.rot[1] * p.rb
+        } else {
+            p.rb + t.shift[1]
+        };
         (ca, cb)
     }
 }

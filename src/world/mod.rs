@@ -8,11 +8,11 @@ mod constraint;
 mod fixed_set;
 mod manifold;
 
-pub(crate) use constraint::{
-    Anchoring, AngularRow, ConstraintPoint, ContactConstraint, ContactParams, NO_ROLL,
-    RollingArms, body, row_velocity, store,
-};
 pub(crate) use bounds_index::BoundsIndex;
+pub(crate) use constraint::{
+    Anchoring, AngularRow, ConstraintPoint, ContactConstraint, ContactParams, NO_ROLL, RollingArms,
+    body, row_velocity, store,
+};
 pub(crate) use fixed_set::FixedSet;
 pub(crate) use manifold::{MAX_POINTS, Manifold};
 

@@ -305,12 +305,21 @@ mod tests {
                 turn * (s * h)
             })
             .collect();
-        let hull = crate::collider::Collider::convex_hull(&corners).unwrap().shape;
+        let hull = crate::collider::Collider::convex_hull(&corners)
+            .unwrap()
+            .shape;
         let s = sum_parts(&[part(hull, Vec3::ZERO, 3.0)]);
         let box_inertia = Shape::Cuboid { half_extents: h }.principal_inertia(3.0);
-        let expected = Mat3::from_quat(turn) * Mat3::from_diagonal(box_inertia) * Mat3::from_quat(turn).transpose();
-        let got = Mat3::from_quat(s.frame) * Mat3::from_diagonal(s.moments) * Mat3::from_quat(s.frame).transpose();
+        let expected = Mat3::from_quat(turn)
+            * Mat3::from_diagonal(box_inertia)
+            * Mat3::from_quat(turn).transpose();
+        let got = Mat3::from_quat(s.frame)
+            * Mat3::from_diagonal(s.moments)
+            * Mat3::from_quat(s.frame).transpose();
         let diff = got - expected;
-        assert!(diff.to_cols_array().iter().all(|x| x.abs() < 1e-4), "{got} vs {expected}");
+        assert!(
+            diff.to_cols_array().iter().all(|x| x.abs() < 1e-4),
+            "{got} vs {expected}"
+        );
     }
 }

@@ -57,9 +57,7 @@ pub struct MassInput<'a> {
 #[inline]
 pub(super) fn gather_body(b: BodyInput, settings: &SolverSettings) -> (BodyState, SolverBody) {
     let dynamic = b.kind == RigidBody::Dynamic;
-    let (m, inertia) = b
-        .props
-        .unwrap_or_else(|| mass_properties(b.shape, &b.mass));
+    let (m, inertia) = b.props.unwrap_or_else(|| mass_properties(b.shape, &b.mass));
     let inv_mass = if dynamic { 1.0 / m } else { 0.0 };
     let inv_inertia = if dynamic && !b.rotation_locked {
         inertia.recip()

@@ -55,7 +55,8 @@ pub fn validate(
         if kind == RigidBody::Dynamic && matches!(shape, Shape::Plane { .. }) {
             return Err(("Collider", "a plane can only be static or kinematic".into()));
         }
-        if kind == RigidBody::Dynamic && matches!(shape, Shape::TriMesh(_) | Shape::HeightField(_)) {
+        if kind == RigidBody::Dynamic && matches!(shape, Shape::TriMesh(_) | Shape::HeightField(_))
+        {
             let why = "a triangle mesh or heightfield has no inside to weigh: it can only be \
                        static or kinematic (use a convex hull for a moving body)";
             return Err(("Collider", why.into()));

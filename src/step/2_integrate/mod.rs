@@ -51,14 +51,18 @@ pub fn integrate_free_motion(
             sb.w = Vec3::ZERO;
             continue;
         }
-        if *integrator == Integrator::SemiImplicitEuler && body.is_dynamic() && !body.rotation_locked {
+        if *integrator == Integrator::SemiImplicitEuler
+            && body.is_dynamic()
+            && !body.rotation_locked
+        {
             // Linear and angular motion are independent here: the linear substeps, then
             // the angular ones with the spin kept in the body frame throughout.
             let (dp, v) = (0..n).fold((Vec3::ZERO, body.v0), |(dp, v), _| {
                 let (dx, v) = linear_substep(*integrator, f, v, h);
                 (dp + dx, v)
             });
-            let (q, w) = semi_implicit::angular_substeps(&Inertial::of(body), body.q0, body.w0, h, n);
+            let (q, w) =
+                semi_implicit::angular_substeps(&Inertial::of(body), body.q0, body.w0, h, n);
             sb.dp = dp;
             sb.dq = (q * body.q0.inverse()).normalize();
             sb.v = v.clamp_length_max(settings.max_linear_speed);

@@ -76,7 +76,9 @@ pub fn find_pairs(
             let slot = &mut scratch.copied[f as usize];
             if *slot == u32::MAX {
                 *slot = world.colliders.len() as u32;
-                world.colliders.push(world.fixed.entries()[f as usize].clone());
+                world
+                    .colliders
+                    .push(world.fixed.entries()[f as usize].clone());
             }
             world.pairs.push((ci as u32, *slot));
         }

@@ -8,7 +8,8 @@ use super::stiffness::{contact_softness, pair_size};
 use crate::collider::Shape;
 use crate::world::{
     Anchoring, AngularRow, BodyState, ColliderEntry, ConstraintPoint, ContactConstraint,
-    ContactParams, MAX_POINTS, Manifold, NO_ROLL, RollingArms, STATIC, SolverBody, body, is_isotropic, row_velocity,
+    ContactParams, MAX_POINTS, Manifold, NO_ROLL, RollingArms, STATIC, SolverBody, body,
+    is_isotropic, row_velocity,
 };
 
 /// A turning sphere's centre from its body's centre of mass (zero when they coincide,
@@ -23,7 +24,12 @@ fn sphere_arm(c: &ColliderEntry, spin: bool, centre_of_mass: Vec3) -> Vec3 {
 /// The world axis of a turning capsule, cylinder or cone whose axis passes through its
 /// body's centre of mass (zero otherwise): turning about it leaves the shape in place.
 fn symmetry_axis(c: &ColliderEntry, spin: bool, centre_of_mass: Vec3) -> Vec3 {
-    if !spin || !matches!(c.shape, Shape::Capsule { .. } | Shape::Cylinder { .. } | Shape::Cone { .. }) {
+    if !spin
+        || !matches!(
+            c.shape,
+            Shape::Capsule { .. } | Shape::Cylinder { .. } | Shape::Cone { .. }
+        )
+    {
         return Vec3::ZERO;
     }
     let axis = c.rot * Vec3::Y;

@@ -46,7 +46,11 @@ pub fn tour_plugin(dir: PathBuf, only: Option<String>) -> impl Plugin {
 #[derive(Resource)]
 struct TourOrder(Vec<usize>);
 
-fn advance_tour(mut frame: Local<u32>, order: Res<TourOrder>, mut switch: MessageWriter<SwitchScene>) {
+fn advance_tour(
+    mut frame: Local<u32>,
+    order: Res<TourOrder>,
+    mut switch: MessageWriter<SwitchScene>,
+) {
     *frame += 1;
     if *frame >= WARMUP && (*frame - WARMUP).is_multiple_of(PER_SCENE) {
         let k = ((*frame - WARMUP) / PER_SCENE) as usize;
