@@ -1,5 +1,6 @@
 //! Collision shapes and the mass properties they imply.
 
+mod mass;
 mod mesh;
 
 use bevy::prelude::*;
@@ -205,21 +206,18 @@ impl Shape {
             Shape::Capsule {
                 radius,
                 half_height,
-            } if !(ok(radius) && ok(half_height)) => Err(format!(
-                "capsule radius {radius}, half height {half_height}"
-            )),
-            Shape::Cylinder {
-                radius,
-                half_height,
-            } if !(ok(radius) && ok(half_height)) => Err(format!(
-                "cylinder radius {radius}, half height {half_height}"
-            )),
-            Shape::Cone {
-                radius,
-                half_height,
-            } if !(ok(radius) && ok(half_height)) => {
-                Err(format!("cone radius {radius}, half height {half_height}"))
             }
+            | Shape::Cylinder {
+                radius,
+                half_height,
+            }
+            | Shape::Cone {
+                radius,
+                half_height,
+            } if !(ok(radius) && ok(half_height)) => Err(format!(
+                "{:?} radius {radius}, half height {half_height}",
+                self.kind()
+            )),
             Shape::Plane {
                 half_extents: Some(h),
             } if !(ok(h.x) && ok(h.y)) => Err(format!("plane half extents {h}")),
@@ -237,32 +235,6 @@ impl Shape {
         }
     }
 
-    /// Volume in m³ (0 for planes, which can only be static).
-    #[inline]
-    pub fn volume(&self) -> f32 {
-        match *self {
-            Shape::Sphere { radius } => 4.0 / 3.0 * std::f32::consts::PI * radius.powi(3),
-            Shape::Cuboid { half_extents: h } => 8.0 * h.x * h.y * h.z,
-            Shape::Capsule { .. } | Shape::Cylinder { .. } | Shape::Cone { .. } => {
-                crate::geometry::unit_mass(self).0
-            }
-            Shape::ConvexHull(ref h) => h.volume(),
-            // Surfaces: nothing to weigh (they can only be static or kinematic).
-            Shape::TriMesh(_) | Shape::HeightField(_) | Shape::Plane { .. } => 0.0,
-        }
-    }
-
-    /// The solid shape's centre of mass in its local frame, m: the origin but for a
-    /// cone, whose centre of mass is a quarter of its height above the base, and a hull.
-    #[inline]
-    pub fn center_of_mass(&self) -> Vec3 {
-        match *self {
-            Shape::Cone { half_height, .. } => Vec3::new(0.0, -0.5 * half_height, 0.0),
-            Shape::ConvexHull(ref h) => h.center_of_mass(),
-            _ => Vec3::ZERO,
-        }
-    }
-
     /// The triangles of a shape made of points (hull, mesh, heightfield), local frame:
     /// vertices (m) and index triples, for drawing; `None` for the others.
     pub fn triangles(&self) -> Option<(Vec<Vec3>, Vec<[u32; 3]>)> {
@@ -273,38 +245,6 @@ impl Shape {
             }
             Shape::HeightField(ref f) => Some(f.field().to_trimesh()),
             _ => None,
-        }
-    }
-
-    /// The rotation of the shape's principal axes in its local frame: identity but for
-    /// a convex hull, whose axes can lie any way.
-    #[inline]
-    pub fn principal_frame(&self) -> Quat {
-        match *self {
-            Shape::ConvexHull(ref h) => h.principal_inertia(1.0).1,
-            _ => Quat::IDENTITY,
-        }
-    }
-
-    /// Principal moments of inertia of the solid shape with the given mass, about its
-    /// centre of mass along its [`principal_frame`](Self::principal_frame), kg·m².
-    #[inline]
-    pub fn principal_inertia(&self, mass: f32) -> Vec3 {
-        match *self {
-            Shape::Sphere { radius } => Vec3::splat(0.4 * mass * radius * radius),
-            Shape::Cuboid { half_extents: h } => {
-                let s = h * 2.0;
-                let (x2, y2, z2) = (s.x * s.x, s.y * s.y, s.z * s.z);
-                Vec3::new(y2 + z2, x2 + z2, x2 + y2) * (mass / 12.0)
-            }
-            // From parry3d's mass properties at unit density, scaled to the mass.
-            Shape::Capsule { .. } | Shape::Cylinder { .. } | Shape::Cone { .. } => {
-                let (volume, inertia) = crate::geometry::unit_mass(self);
-                inertia * (mass / volume)
-            }
-            Shape::ConvexHull(ref h) => h.principal_inertia(mass).0,
-            // Surfaces have no volume; a kinematic one never needs inertia.
-            Shape::TriMesh(_) | Shape::HeightField(_) | Shape::Plane { .. } => Vec3::splat(mass),
         }
     }
 
