@@ -1,14 +1,17 @@
 //! Which colliders a query looks at: the awake colliders of the last step at their
-//! end-of-step poses, searched by a [`BoundsIndex`] built the first time a query asks
-//! after a step (a scene that never queries never builds it), and the fixed set
-//! (static colliders, sleepers) by its own index, kept by the broad phase. The
-//! brute-force walk over everything is the reference the tests hold the index to.
+//! end-of-step poses, searched by the broad phase's tree ([`AwakeTree`]), refitted to
+//! those poses the first time a query asks after a step (a scene that never queries
+//! never pays for it), and the fixed set (static colliders, sleepers) by its own index,
+//! kept by the broad phase. The brute-force walk over everything is the reference the
+//! tests hold the index to.
 
 use std::sync::RwLock;
 
 use bevy::prelude::*;
 
-use crate::world::{BoundsIndex, ColliderEntry, PhysicsWorld, STATIC};
+#[cfg(doc)]
+use crate::world::AwakeTree;
+use crate::world::{ColliderEntry, PhysicsWorld, STATIC};
 
 /// An awake collider at the end of the last step.
 #[derive(Clone, Copy, Debug)]
@@ -26,8 +29,10 @@ struct AwakePose {
 pub(crate) struct AwakeIndex {
     /// The step (`PhysicsWorld::step_count`) and collider count it was built for.
     built_for: Option<(u64, usize)>,
+    /// Leaf i of the world's awake tree is `poses[i]`.
     poses: Vec<AwakePose>,
-    index: BoundsIndex,
+    /// The awake boxes' union, m.
+    awake_extent: (Vec3, Vec3),
     /// The fixed set's boxes' union, when its own index was stale (collisions off).
     fixed_extent: (Vec3, Vec3),
 }
@@ -48,9 +53,11 @@ impl AwakeIndex {
     fn rebuild(&mut self, world: &PhysicsWorld) {
         self.poses.clear();
         for (i, c) in world.colliders.iter().enumerate() {
-            // Fixed entries copied in by the broad phase are searched in the fixed set.
+            // Fixed entries copied in by the broad phase (after the awake ones) are
+            // searched in the fixed set.
             if c.body == STATIC {
-                continue;
+                debug_assert!(world.colliders[i..].iter().all(|c| c.body == STATIC));
+                break;
             }
             let (pos, rot) = world.collider_pose(c);
             let (lo, hi) = c.shape.aabb(pos, rot);
@@ -63,9 +70,9 @@ impl AwakeIndex {
             });
         }
         let poses = &self.poses;
-        self.index.rebuild(poses.len(), |i| {
-            (poses[i as usize].lo, poses[i as usize].hi)
-        });
+        let mut tree = world.awake_tree.write().unwrap_or_else(|e| e.into_inner());
+        tree.fit(poses.len(), |i| (poses[i].lo, poses[i].hi));
+        self.awake_extent = tree.extent();
         self.fixed_extent = if world.fixed.is_searchable() {
             world.fixed.extent()
         } else {
@@ -80,17 +87,21 @@ impl AwakeIndex {
         self.built_for = Some((world.step_count, world.colliders.len()));
     }
 
-    /// Calls `found` with every collider whose box overlaps [lo, hi].
+    /// Calls `found` with every collider whose box overlaps [lo, hi] and passes `test`
+    /// (given a box: lo, hi): the awake ones from the tree, whose subtrees `test` prunes
+    /// (a ray's slab test prunes far more than its bounding box), then the fixed ones.
     pub fn overlapping<'a>(
         &self,
         world: &'a PhysicsWorld,
-        lo: Vec3,
-        hi: Vec3,
+        (lo, hi): (Vec3, Vec3),
+        test: impl Fn(Vec3, Vec3) -> bool,
         mut found: impl FnMut(Candidate<'a>),
     ) {
         let poses = &self.poses;
-        let aabb = |i: u32| (poses[i as usize].lo, poses[i as usize].hi);
-        self.index.overlapping(aabb, lo, hi, |i| {
+        let meets = |a: Vec3, b: Vec3| a.cmple(hi).all() && lo.cmple(b).all() && test(a, b);
+        let tree = world.awake_tree.read().unwrap_or_else(|e| e.into_inner());
+        debug_assert_eq!(tree.len(), poses.len(), "the tree fits this step's poses");
+        tree.visit(meets, |i| {
             let p = &poses[i as usize];
             found(Candidate {
                 entry: &world.colliders[p.collider as usize],
@@ -109,14 +120,19 @@ impl AwakeIndex {
                 hi: c.aabb_max,
             }
         };
+        let mut offer = |c: Candidate<'a>| {
+            if test(c.lo, c.hi) {
+                found(c);
+            }
+        };
         if world.fixed.is_searchable() {
-            world.fixed.overlapping(lo, hi, 0.0, |i| found(fixed(i)));
+            world.fixed.overlapping(lo, hi, 0.0, |i| offer(fixed(i)));
         } else {
             // Changed since the broad phase last ran (or collisions are off): every entry.
             for i in 0..entries.len() as u32 {
                 let c = fixed(i);
                 if c.lo.cmple(hi).all() && lo.cmple(c.hi).all() {
-                    found(c);
+                    offer(c);
                 }
             }
         }
@@ -146,7 +162,7 @@ impl AwakeIndex {
     /// The union of every finite collider box, m (lo > hi when there is none): a query
     /// along an unbounded ray or sweep need search no farther.
     pub fn extent(&self) -> (Vec3, Vec3) {
-        let (a, b) = (self.index.extent(), self.fixed_extent);
+        let (a, b) = (self.awake_extent, self.fixed_extent);
         (a.0.min(b.0), a.1.max(b.1))
     }
 }
@@ -173,12 +189,9 @@ pub struct SpatialQueryCache {
 
 impl SpatialQueryCache {
     /// Whether queries check everything (tests' reference) rather than the index.
-    #[inline]
+    #[cfg(test)]
     pub(crate) fn brute_force(&self) -> bool {
-        #[cfg(test)]
-        return self.brute_force.load(std::sync::atomic::Ordering::Relaxed);
-        #[cfg(not(test))]
-        false
+        self.brute_force.load(std::sync::atomic::Ordering::Relaxed)
     }
 
     /// Runs `f` with the awake index of the world's last step, building it first if the

@@ -213,15 +213,14 @@ impl SpatialQuery<'_> {
         let reach = self.reach(origin, dir, max_distance, half);
         let (lo1, hi1) = shape.shape.aabb(origin + dir * reach, rotation);
         let mut best: Option<(ShapeHitData, u64)> = None;
-        self.walk(lo0.min(lo1), hi0.max(hi1), |c| {
+        // The swept box must meet a candidate's: a slab test of the centre's path against
+        // the candidate's box grown by the shape's half size.
+        let centre = (lo0 + hi0) * 0.5;
+        let sweeps = |lo: Vec3, hi: Vec3| {
+            exact::ray_aabb(centre, dir, max_distance, lo - half, hi + half).is_some()
+        };
+        self.walk_where(lo0.min(lo1), hi0.max(hi1), sweeps, |c| {
             if !filter.admits(c.entry) {
-                return;
-            }
-            // The swept box must meet the candidate's: a slab test of the centre's path
-            // against the candidate's box grown by the shape's half size.
-            let centre = (lo0 + hi0) * 0.5;
-            let (lo, hi) = (c.lo - half, c.hi + half);
-            if !self.brute() && exact::ray_aabb(centre, dir, max_distance, lo, hi).is_none() {
                 return;
             }
             let target = &c.entry.shape;
@@ -336,21 +335,28 @@ impl SpatialQuery<'_> {
         }
     }
 
-    /// Whether this is the tests' reference, which skips every box test.
-    #[inline]
-    fn brute(&self) -> bool {
-        self.cache.brute_force()
-    }
-
     /// Runs `found` on every collider whose box meets [lo, hi].
     fn walk<'a>(&'a self, lo: Vec3, hi: Vec3, found: impl FnMut(Candidate<'a>)) {
+        self.walk_where(lo, hi, |_, _| true, found);
+    }
+
+    /// Runs `found` on every collider whose box meets [lo, hi] and passes `test` (given
+    /// a box, lo and hi, m), which also prunes the awake tree's subtrees.
+    fn walk_where<'a>(
+        &'a self,
+        lo: Vec3,
+        hi: Vec3,
+        test: impl Fn(Vec3, Vec3) -> bool,
+        found: impl FnMut(Candidate<'a>),
+    ) {
         let world: &'a PhysicsWorld = &self.world;
         #[cfg(test)]
         if self.cache.brute_force() {
             return self.cache.with(world, |index| index.all(world, found));
         }
-        self.cache
-            .with(world, |index| index.overlapping(world, lo, hi, found));
+        self.cache.with(world, |index| {
+            index.overlapping(world, (lo, hi), test, found)
+        });
     }
 
     /// The entities among the colliders meeting [lo, hi] that pass `filter` and `test`,
@@ -401,11 +407,9 @@ impl SpatialQuery<'_> {
         let reach = self.reach(origin, dir, max_distance, Vec3::ZERO);
         let end = origin + dir * reach;
         let mut going = true;
-        self.walk(origin.min(end), origin.max(end), |c| {
+        let crosses = |lo, hi| exact::ray_aabb(origin, dir, max_distance, lo, hi).is_some();
+        self.walk_where(origin.min(end), origin.max(end), crosses, |c| {
             if !going || !filter.admits(c.entry) || !predicate(c.entry.entity) {
-                return;
-            }
-            if !self.brute() && exact::ray_aabb(origin, dir, max_distance, c.lo, c.hi).is_none() {
                 return;
             }
             if let Some((distance, normal)) =

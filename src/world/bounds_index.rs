@@ -4,8 +4,8 @@
 //! found by binary search, where `widest` is the widest box along x. A few very wide
 //! boxes (infinite planes, long walls) would make that window everything, so boxes more
 //! than [`WIDE_FACTOR`] times the median width sit in a short list every query tests.
-//! The fixed set keeps one over its entries; the spatial queries build one over the
-//! awake colliders when first asked after a step.
+//! The fixed set keeps one over its entries (the awake colliders, which all move, are in
+//! a tree instead: [`AwakeTree`](super::AwakeTree)).
 
 use bevy::prelude::*;
 

@@ -3,12 +3,13 @@
 //! the fixed set, contact manifolds and contact constraints. It imports no stage; every
 //! stage imports it.
 
+mod awake_tree;
 mod bounds_index;
 mod constraint;
 mod fixed_set;
 mod manifold;
 
-pub(crate) use bounds_index::BoundsIndex;
+pub(crate) use awake_tree::AwakeTree;
 pub(crate) use constraint::{
     Anchoring, AngularRow, ConstraintPoint, ContactConstraint, ContactParams, NO_ROLL, RollingArms,
     body, row_velocity, store,
@@ -228,6 +229,9 @@ pub struct PhysicsWorld {
     /// Static colliders and sleeping bodies, kept between steps and updated only when
     /// they change.
     pub(crate) fixed: FixedSet,
+    /// The awake colliders' tree: the broad phase's, refitted for the spatial queries
+    /// after the step (behind a lock because queries read the world shared).
+    pub(crate) awake_tree: std::sync::RwLock<AwakeTree>,
     /// Candidate collider pairs from the broad phase, as indices into `colliders`.
     pub(crate) pairs: Vec<(u32, u32)>,
     /// Contact manifolds from the narrow phase.

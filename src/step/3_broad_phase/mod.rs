@@ -2,9 +2,10 @@
 //!
 //! Each collider's box is swept over the body's free motion this step (start pose and
 //! free end pose) and fattened by the speculative margin, so a fast body meets what lies
-//! in its path. A bounding-volume tree kept between steps (parry3d's) finds the awake
-//! overlaps ([`tree`]); our sweep and prune, which it replaced, and the brute-force O(n²)
-//! search are kept as the references it is tested against.
+//! in its path. A bounding-volume tree kept between steps (parry3d's, in the data layer:
+//! [`AwakeTree`], which the spatial queries use too) finds the awake overlaps; our sweep
+//! and prune, which it replaced, and the brute-force O(n²) search are kept as the
+//! references it is tested against.
 
 #[cfg(test)]
 mod brute_force;
@@ -12,25 +13,24 @@ mod brute_force;
 mod parity_tests;
 #[cfg(any(test, feature = "bench-internals"))]
 mod sweep_and_prune;
-mod tree;
 
 use bevy::prelude::*;
 
 use crate::limits::MAX_PAIRS_PER_STEP;
 use crate::settings::SolverSettings;
+#[cfg(doc)]
+use crate::world::AwakeTree;
 use crate::world::{ColliderEntry, PhysicsWorld, STATIC};
 
 #[cfg(test)]
 use brute_force::brute_force_pairs;
 #[cfg(any(test, feature = "bench-internals"))]
 pub use sweep_and_prune::SweepAndPrune;
-use tree::AwakeTree;
 
-/// Buffers kept between steps: the sweep's order and, per fixed entry, its index in this
-/// step's collider list (`u32::MAX` when not copied).
+/// Buffers kept between steps: per fixed entry, its index in this step's collider list
+/// (`u32::MAX` when not copied).
 #[derive(Default)]
 pub struct BroadPhaseScratch {
-    tree: AwakeTree,
     copied: Vec<u32>,
     found: Vec<u32>,
     /// The pair cap was hit last step (warn once per episode).
@@ -38,7 +38,7 @@ pub struct BroadPhaseScratch {
 }
 
 /// Updates the awake colliders' swept, fattened bounds and finds the overlapping pairs:
-/// awake with awake by sweep and prune, awake with fixed (static or asleep) by asking the
+/// awake with awake by the tree, awake with fixed (static or asleep) by asking the
 /// [`FixedSet`]. Fixed entries that something may touch are copied to the end of the
 /// step's collider list, so later stages see one list.
 pub fn find_pairs(
@@ -51,7 +51,14 @@ pub fn find_pairs(
     let margin = settings.speculative_margin;
     update_bounds(world, margin);
     let cap = MAX_PAIRS_PER_STEP;
-    let mut full = scratch.tree.pairs(&world.colliders, &mut world.pairs, cap);
+    let mut full = {
+        let colliders = &world.colliders;
+        let tree = world.awake_tree.get_mut();
+        let tree = tree.unwrap_or_else(|e| e.into_inner());
+        let aabb = |i: usize| (colliders[i].aabb_min, colliders[i].aabb_max);
+        let keep = |a: u32, b: u32| candidate(&colliders[a as usize], &colliders[b as usize]);
+        tree.pairs(colliders.len(), aabb, keep, &mut world.pairs, cap)
+    };
 
     world.fixed.update_search();
     scratch.copied.clear();
