@@ -237,7 +237,7 @@ impl Anchoring {
     /// How this constraint's anchors move with the bodies' turn so far this step, when
     /// a rolling motion applies (`None`: they turn with their bodies). Once per
     /// constraint, not per point.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn turned(
         &self,
         arms: &[RollingArms],
@@ -247,6 +247,14 @@ impl Anchoring {
         if !self.rolls() {
             return None;
         }
+        Some(self.rolling(arms, a, b))
+    }
+
+    /// [`turned`](Self::turned) for the few contacts with a rolling motion: out of the
+    /// solver loops' line.
+    #[cold]
+    #[inline(never)]
+    fn rolling(&self, arms: &[RollingArms], a: &SolverBody, b: &SolverBody) -> Turned {
         let m = arms[self.roll as usize];
         let side = |dq: Quat, arm: Vec3, axis: Vec3| {
             let rot = if axis == Vec3::ZERO {
@@ -258,16 +266,16 @@ impl Anchoring {
         };
         let (ra, sa) = side(a.dq, m.arm[0], m.axis[0]);
         let (rb, sb) = side(b.dq, m.arm[1], m.axis[1]);
-        Some(Turned {
+        Turned {
             rot: [ra, rb],
             shift: [sa, sb],
-        })
+        }
     }
 
     /// Point `p`'s anchors on A and B now, from the bodies' start-of-step centres, with
     /// this constraint's [`turned`](Self::turned). Without a rolling motion (nearly
     /// every contact) the anchors turn with the bodies or stay, as before any of this.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn anchors(
         &self,
         p: &ConstraintPoint,

@@ -38,9 +38,7 @@ pub use lifecycle::{
 };
 pub use settings::{guard_fixed_rate, validate_settings};
 pub use validate::validate;
-use validate::{
-    validate_center_of_mass, validate_force, validate_mass_properties, validate_scalars,
-};
+use validate::{BodyChecks, check_body, validate_mass_properties, validate_scalars};
 
 /// The components prepare reads from each awake body (and the impulse it consumes).
 #[derive(QueryData)]
@@ -190,12 +188,19 @@ pub fn prepare_bodies(
             item.linear_damping.map_or(0.0, |d| d.0),
             item.angular_damping.map_or(0.0, |d| d.0),
         );
-        let checked = validate(&tf, &vel, kind, item.mass, shape.as_ref())
-            .and_then(|()| validate_force(item.force))
-            .and_then(|()| validate_center_of_mass(item.center_of_mass))
-            .and_then(|()| {
-                validate_scalars(item.friction, item.restitution, damping, item.gravity_scale)
-            });
+        let checked = check_body(&BodyChecks {
+            tf: &tf,
+            vel: &vel,
+            kind,
+            mass: item.mass,
+            shape: shape.as_ref(),
+            force: item.force,
+            center_of_mass: item.center_of_mass,
+            friction: item.friction,
+            restitution: item.restitution,
+            damping,
+            gravity_scale: item.gravity_scale,
+        });
         if let Err(e) = checked {
             reject(&mut commands, entity, e);
             continue;

@@ -8,6 +8,103 @@ use crate::collider::Shape;
 use crate::effects::GravityScale;
 use crate::limits;
 
+/// What a dynamic or kinematic body brings to be checked each step.
+pub(super) struct BodyChecks<'a> {
+    pub tf: &'a Transform,
+    pub vel: &'a Velocity,
+    pub kind: RigidBody,
+    pub mass: Option<&'a Mass>,
+    pub shape: Option<&'a Shape>,
+    pub force: Option<&'a ExternalForce>,
+    pub center_of_mass: Option<&'a CenterOfMass>,
+    pub friction: Option<&'a Friction>,
+    pub restitution: Option<&'a Restitution>,
+    /// Linear and angular damping, 1/s.
+    pub damping: Vec2,
+    pub gravity_scale: Option<&'a GravityScale>,
+}
+
+/// Checks a body's whole input: [`validate`], then its force, centre of mass and
+/// scalars. Returns the first offending field and why.
+///
+/// Every awake body passes through here every step, so the rules are first applied as
+/// one test that builds no message ([`plainly_valid`]); only a body it doubts goes
+/// through the detailed checks, which name the field (and have the last word).
+#[inline]
+pub(super) fn check_body(b: &BodyChecks) -> Result<(), (&'static str, String)> {
+    if plainly_valid(b) {
+        debug_assert!(
+            detailed(b).is_ok(),
+            "the quick test passed a body the rules refuse"
+        );
+        return Ok(());
+    }
+    detailed(b)
+}
+
+#[cold]
+#[inline(never)]
+fn detailed(b: &BodyChecks) -> Result<(), (&'static str, String)> {
+    validate(b.tf, b.vel, b.kind, b.mass, b.shape)
+        .and_then(|()| validate_force(b.force))
+        .and_then(|()| validate_center_of_mass(b.center_of_mass))
+        .and_then(|()| validate_scalars(b.friction, b.restitution, b.damping, b.gravity_scale))
+}
+
+/// The rules of [`detailed`] as plain comparisons: true only if it would pass (it may
+/// doubt a body the detailed checks then accept, never the other way round; tests hold
+/// every refused field to that through the detailed path).
+#[inline(always)]
+fn plainly_valid(b: &BodyChecks) -> bool {
+    use limits::{MAX_COEFFICIENT, MAX_FORCE, MAX_MASS, MAX_RATE, MAX_SIZE, MAX_SPEED};
+    // `x <= max` is false for NaN, so each bound also rules NaN out.
+    let within = |v: Vec3, max: f32| v.abs().cmple(Vec3::splat(max)).all();
+    let len2 = b.tf.rotation.length_squared();
+    let dynamic = b.kind == RigidBody::Dynamic;
+    let size = |x: f32| x > 0.0 && x <= MAX_SIZE;
+    let shape = match b.shape {
+        None => true,
+        Some(Shape::Sphere { radius }) => size(*radius),
+        Some(Shape::Cuboid { half_extents: h }) => size(h.x) & size(h.y) & size(h.z),
+        // Rarer shapes: the shape's own check, and what only a static body may be.
+        Some(s) => {
+            s.validate().is_ok()
+                && !(dynamic
+                    && matches!(
+                        s,
+                        Shape::Plane { .. } | Shape::TriMesh(_) | Shape::HeightField(_)
+                    ))
+        }
+    };
+    let mass = match b.mass {
+        Some(m) if dynamic => m.0 > 0.0 && m.0 <= MAX_MASS,
+        _ => true,
+    };
+    let in_range = |x: f32, lo: f32, hi: f32| x >= lo && x <= hi;
+    let coefficients = b
+        .friction
+        .is_none_or(|f| in_range(f.0, 0.0, MAX_COEFFICIENT))
+        & b.restitution.is_none_or(|r| in_range(r.0, 0.0, 1.0))
+        & b.gravity_scale
+            .is_none_or(|g| in_range(g.0, -MAX_COEFFICIENT, MAX_COEFFICIENT))
+        & in_range(b.damping.x, 0.0, MAX_RATE)
+        & in_range(b.damping.y, 0.0, MAX_RATE);
+    let force = b
+        .force
+        .is_none_or(|f| within(f.force, MAX_FORCE) & within(f.torque, MAX_FORCE));
+    let com = b.center_of_mass.is_none_or(|c| within(c.0, MAX_SIZE));
+    within(b.tf.translation, f32::MAX)
+        & b.tf.rotation.is_finite()
+        & (len2 >= 1e-12 && len2 <= f32::MAX)
+        & within(b.vel.linear, MAX_SPEED)
+        & within(b.vel.angular, MAX_RATE)
+        & mass
+        & coefficients
+        & force
+        & com
+        & shape
+}
+
 /// Checks one body's input. Returns the offending field and why.
 #[inline]
 pub fn validate(
