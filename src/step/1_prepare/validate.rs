@@ -260,6 +260,103 @@ pub(super) fn validate_mass_properties(
 mod tests {
     use super::*;
     use crate::collider::Collider;
+    use crate::rng::Rnd;
+
+    /// A value that is often fine and sometimes hostile: NaN, ±∞, huge, zero, negative,
+    /// just past a limit.
+    fn value(rnd: &mut Rnd, fine: f32) -> f32 {
+        let edge = [
+            f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            1e30,
+            -1e30,
+            0.0,
+            -fine,
+            limits::MAX_SIZE * 1.01,
+            limits::MAX_RATE * 1.01,
+            1e-40,
+        ];
+        if rnd.unit() < 0.85 {
+            fine * rnd.range(0.5, 1.5)
+        } else {
+            edge[(rnd.unit() * edge.len() as f32) as usize % edge.len()]
+        }
+    }
+
+    /// The quick test is the fast path of the detailed rules, kept honest by them (the
+    /// reference): on random bodies with hostile fields it answers what they answer, and
+    /// so does `check_body`.
+    #[test]
+    fn the_quick_test_never_passes_what_the_rules_refuse() {
+        let mut rnd = Rnd(0x5eed_1234_abcd_0001);
+        let (mut passed, mut refused) = (0, 0);
+        for _ in 0..20_000 {
+            let v3 = |rnd: &mut Rnd, fine: f32| {
+                Vec3::new(value(rnd, fine), value(rnd, fine), value(rnd, fine))
+            };
+            let tf = Transform {
+                translation: v3(&mut rnd, 3.0),
+                rotation: Quat::from_xyzw(
+                    value(&mut rnd, 0.5),
+                    value(&mut rnd, 0.5),
+                    value(&mut rnd, 0.5),
+                    value(&mut rnd, 0.5),
+                ),
+                scale: Vec3::ONE,
+            };
+            let vel = Velocity {
+                linear: v3(&mut rnd, 2.0),
+                angular: v3(&mut rnd, 2.0),
+            };
+            let shape = match (rnd.unit() * 4.0) as u32 {
+                0 => Collider::sphere(value(&mut rnd, 0.5)).shape,
+                1 => Collider::cuboid(value(&mut rnd, 0.5), 0.4, value(&mut rnd, 0.3)).shape,
+                2 => Collider::capsule(value(&mut rnd, 0.5), value(&mut rnd, 0.5)).shape,
+                _ => Collider::plane().shape,
+            };
+            let kind = [RigidBody::Dynamic, RigidBody::Kinematic][(rnd.unit() * 2.0) as usize];
+            let some = |rnd: &mut Rnd| rnd.unit() < 0.5;
+            let mass = some(&mut rnd).then(|| Mass(value(&mut rnd, 2.0)));
+            let force = some(&mut rnd).then(|| ExternalForce {
+                force: v3(&mut rnd, 10.0),
+                torque: v3(&mut rnd, 1.0),
+            });
+            let com = some(&mut rnd).then(|| CenterOfMass(v3(&mut rnd, 0.1)));
+            let friction = some(&mut rnd).then(|| Friction(value(&mut rnd, 0.5)));
+            let restitution = some(&mut rnd).then(|| Restitution(value(&mut rnd, 0.5)));
+            let gravity = some(&mut rnd).then(|| GravityScale(value(&mut rnd, 1.0)));
+            let damping = Vec2::new(value(&mut rnd, 0.1), value(&mut rnd, 0.1));
+            let b = BodyChecks {
+                tf: &tf,
+                vel: &vel,
+                kind,
+                mass: mass.as_ref(),
+                shape: Some(&shape),
+                force: force.as_ref(),
+                center_of_mass: com.as_ref(),
+                friction: friction.as_ref(),
+                restitution: restitution.as_ref(),
+                damping,
+                gravity_scale: gravity.as_ref(),
+            };
+            let rules = detailed(&b).is_ok();
+            // The same rules: it neither passes what they refuse nor doubts what they
+            // accept (a doubt would only cost time, but there is no reason for one).
+            assert_eq!(plainly_valid(&b), rules, "{:?}", detailed(&b));
+            assert_eq!(check_body(&b).is_ok(), rules);
+            if rules {
+                passed += 1;
+            } else {
+                refused += 1;
+            }
+        }
+        // Both answers were exercised.
+        assert!(
+            passed > 1000 && refused > 1000,
+            "{passed} passed, {refused} refused"
+        );
+    }
 
     fn check(
         tf: Transform,
