@@ -206,14 +206,6 @@ pub(crate) struct RollingArms {
     pub axis: [Vec3; 2],
 }
 
-/// How far this substep's turn moves a constraint's anchors: the rotation that turning
-/// anchors follow and the shift of those that stay put, per side.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Turned {
-    pub rot: [Quat; 2],
-    pub shift: [Vec3; 2],
-}
-
 /// The part of `q` that is not a turn about the unit `axis` (q = swing · twist).
 #[inline]
 pub(crate) fn swing(q: Quat, axis: Vec3) -> Quat {
@@ -234,70 +226,52 @@ impl Anchoring {
         self.roll != NO_ROLL
     }
 
-    /// How this constraint's anchors move with the bodies' turn so far this step, when
-    /// a rolling motion applies (`None`: they turn with their bodies). Once per
-    /// constraint, not per point.
-    #[inline(always)]
-    pub(crate) fn turned(
-        &self,
-        arms: &[RollingArms],
-        a: &SolverBody,
-        b: &SolverBody,
-    ) -> Option<Turned> {
-        if !self.rolls() {
-            return None;
-        }
-        Some(self.rolling(arms, a, b))
-    }
-
-    /// [`turned`](Self::turned) for the few contacts with a rolling motion: out of the
-    /// solver loops' line.
-    #[cold]
-    #[inline(never)]
-    fn rolling(&self, arms: &[RollingArms], a: &SolverBody, b: &SolverBody) -> Turned {
-        let m = arms[self.roll as usize];
-        let side = |dq: Quat, arm: Vec3, axis: Vec3| {
-            let rot = if axis == Vec3::ZERO {
-                dq
-            } else {
-                swing(dq, axis)
-            };
-            (rot, dq * arm - arm)
-        };
-        let (ra, sa) = side(a.dq, m.arm[0], m.axis[0]);
-        let (rb, sb) = side(b.dq, m.arm[1], m.axis[1]);
-        Turned {
-            rot: [ra, rb],
-            shift: [sa, sb],
-        }
-    }
-
-    /// Point `p`'s anchors on A and B now, from the bodies' start-of-step centres, with
-    /// this constraint's [`turned`](Self::turned). Without a rolling motion (nearly
-    /// every contact) the anchors turn with the bodies or stay, as before any of this.
+    /// Point `p`'s anchors on A and B now, from the bodies' start-of-step centres.
+    /// Without a rolling motion (nearly every contact) they turn with their bodies or
+    /// stay; the few with one take the cold path.
     #[inline(always)]
     pub(crate) fn anchors(
         &self,
         p: &ConstraintPoint,
         a: &SolverBody,
         b: &SolverBody,
-        t: &Option<Turned>,
+        arms: &[RollingArms],
     ) -> (Vec3, Vec3) {
-        let Some(t) = t else {
-            let ca = if self.turn[0] { a.dq * p.ra } else { p.ra };
-            let cb = if self.turn[1] { b.dq * p.rb } else { p.rb };
-            return (ca, cb);
-        };
-        let ca = if self.turn[0] {
-            t.rot[0] * p.ra
-        } else {
-            p.ra + t.shift[0]
-        };
-        let cb = if self.turn[1] {
-            t.rot[1] * p.rb
-        } else {
-            p.rb + t.shift[1]
-        };
+        if self.rolls() {
+            return self.rolling_anchors(p, a, b, arms);
+        }
+        let ca = if self.turn[0] { a.dq * p.ra } else { p.ra };
+        let cb = if self.turn[1] { b.dq * p.rb } else { p.rb };
         (ca, cb)
+    }
+
+    /// [`anchors`](Self::anchors) under a rolling motion: a side that turns takes only
+    /// its body's swing off the axis it rolls about; a side that stays is carried by the
+    /// arm's turn. Out of the solver loops' line (one copy of each loop, not two).
+    #[cold]
+    #[inline(never)]
+    fn rolling_anchors(
+        &self,
+        p: &ConstraintPoint,
+        a: &SolverBody,
+        b: &SolverBody,
+        arms: &[RollingArms],
+    ) -> (Vec3, Vec3) {
+        let m = arms[self.roll as usize];
+        let side = |dq: Quat, arm: Vec3, axis: Vec3, turns: bool, r: Vec3| {
+            if !turns {
+                return r + (dq * arm - arm);
+            }
+            let rot = if axis == Vec3::ZERO {
+                dq
+            } else {
+                swing(dq, axis)
+            };
+            rot * r
+        };
+        (
+            side(a.dq, m.arm[0], m.axis[0], self.turn[0], p.ra),
+            side(b.dq, m.arm[1], m.axis[1], self.turn[1], p.rb),
+        )
     }
 }

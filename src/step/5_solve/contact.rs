@@ -259,14 +259,13 @@ pub fn refresh_rows(
         let linear = a.inv_mass + b.inv_mass;
         let anchoring = c.anchoring;
         let rolls = anchoring.rolls() && arms[anchoring.roll as usize].arm != [Vec3::ZERO; 2];
-        let turned = anchoring.turned(arms, &a, &b);
         for p in c.points[..c.len].iter_mut() {
             if rolls {
                 // A sphere rolling about an off-centre centre of mass: its contact point
                 // stays under its centre, so the lever arm turns with the centre, and
                 // the rows follow it (a start-of-step arm lags the rocking and pumps it:
                 // a weeble's swing grew 20 % in three periods).
-                let (ra, rb) = anchoring.anchors(p, &a, &b, &turned);
+                let (ra, rb) = anchoring.anchors(p, &a, &b, arms);
                 p.normal_row = AngularRow::new(&a, &b, ra, rb, c.normal);
                 p.tangent_rows = [
                     AngularRow::new(&a, &b, ra, rb, c.tangent1),

@@ -98,7 +98,6 @@ pub fn solve(
     for c in constraints.iter_mut() {
         let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
         let anchoring = c.anchoring;
-        let turned = anchoring.turned(arms, &a, &b);
         let dp = b.dp - a.dp;
         let spin = c.spin;
         // A manifold's normal rows are coupled through its two bodies (a cube's corner
@@ -111,7 +110,7 @@ pub fn solve(
         // between substeps), so measured once.
         let mut separation = [0.0f32; MAX_POINTS];
         for (s, p) in separation.iter_mut().zip(&c.points[..c.len]) {
-            let (ca, cb) = anchoring.anchors(p, &a, &b, &turned);
+            let (ca, cb) = anchoring.anchors(p, &a, &b, arms);
             *s = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
         }
         for _ in 0..sweeps {
@@ -227,10 +226,9 @@ pub fn stop_approach(
     for c in constraints.iter_mut() {
         let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
         let anchoring = c.anchoring;
-        let turned = anchoring.turned(arms, &a, &b);
         let dp = b.dp - a.dp;
         for p in c.points[..c.len].iter_mut() {
-            let (ca, cb) = anchoring.anchors(p, &a, &b, &turned);
+            let (ca, cb) = anchoring.anchors(p, &a, &b, arms);
             let s = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
             let vn = row_velocity(&a, &b, c.normal, &p.normal_row, c.spin);
             if s > 0.0 || vn >= 0.0 {
