@@ -26,6 +26,7 @@ mod geometry;
 #[cfg(feature = "demo")]
 pub mod interaction;
 pub mod interpolation;
+pub mod joint;
 pub mod layers;
 pub mod limits;
 mod math;
@@ -69,6 +70,7 @@ pub mod prelude {
         PhysicsExtrapolationPlugin, TransformExtrapolation, TransformInterpolation,
         TransformInterpolationPlugin,
     };
+    pub use crate::joint::{Joint, JointBroken, JointForces, JointKind, JointMotor, JointSpring};
     pub use crate::layers::{CollisionLayers, LayerMask, PhysicsLayer, Sensor};
     #[cfg(feature = "mesh")]
     pub use crate::mesh_colliders::{ColliderConstructor, ColliderConstructorHierarchy};

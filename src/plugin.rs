@@ -101,7 +101,8 @@ impl Plugin for TumblePlugin {
             .add_observer(prepare::record_marker)
             .add_observer(prepare::number_collider)
             .add_message::<events::CollisionStart>()
-            .add_message::<events::CollisionEnd>();
+            .add_message::<events::CollisionEnd>()
+            .add_message::<crate::joint::JointBroken>();
         app.register_type::<RigidBody>()
             .register_type::<Velocity>()
             .register_type::<Mass>()
@@ -121,7 +122,9 @@ impl Plugin for TumblePlugin {
             .register_type::<SleepSettings>()
             .register_type::<Effects>()
             .register_type::<Wind>()
-            .register_type::<GlobalForce>();
+            .register_type::<GlobalForce>()
+            .register_type::<crate::joint::Joint>()
+            .register_type::<crate::joint::JointForces>();
 
         // Colliders built from meshes as they load (before the frame's fixed steps).
         #[cfg(feature = "mesh")]
@@ -147,6 +150,7 @@ impl Plugin for TumblePlugin {
                     prepare::readmit_rejected,
                     prepare::sync_fixed_set,
                     prepare::prepare_bodies,
+                    prepare::prepare_joints,
                     prepare::clear_impulses,
                 )
                     .chain()
@@ -180,7 +184,8 @@ impl Plugin for TumblePlugin {
                     .in_set(S::NarrowPhase),
                 (
                     stamp::<{ S::Solve as usize }>,
-                    solve::solve_contacts.run_if(collisions.clone()),
+                    // Also without collisions: joints (it returns at once with neither).
+                    solve::solve_contacts,
                     solve::sweep_against_fixed.run_if(collisions),
                 )
                     .chain()
@@ -188,6 +193,7 @@ impl Plugin for TumblePlugin {
                 (
                     stamp::<{ S::Writeback as usize }>,
                     writeback::writeback_bodies,
+                    writeback::writeback_joints,
                     events::report_collisions,
                 )
                     .chain()

@@ -1,10 +1,12 @@
-//! Stage 6, writeback: the solver arrays back into `Transform` and `Velocity`.
+//! Stage 6, writeback: the solver arrays back into `Transform` and `Velocity`, and the
+//! joints' forces into [`JointForces`].
 //! A body whose state became non-finite is frozen where it was and reported, so a
 //! blow-up never reaches the ECS or other bodies' next step.
 
 use bevy::prelude::*;
 
 use crate::body::{PhysicsRejected, RigidBody, Velocity};
+use crate::joint::{Joint, JointBroken, JointForces};
 use crate::math::to_parent_frame;
 use crate::world::{KinematicPose, PhysicsWorld};
 
@@ -65,6 +67,38 @@ pub fn writeback_bodies(
                 target,
             };
             world.kinematic_poses.insert(body.entity, pose);
+        }
+    }
+}
+
+/// Each joint's state back on its entity ([`JointForces`]: the force and torque it
+/// applied, and the impulses next step warm starts from); a joint whose force passed its
+/// [`Joint::break_force`] breaks: its `Joint` is removed and [`JointBroken`] sent and
+/// triggered on it. A scene without joints returns at once.
+pub fn writeback_joints(
+    mut commands: Commands,
+    world: Res<PhysicsWorld>,
+    mut joints: Query<(&Joint, &mut JointForces)>,
+    mut broken: MessageWriter<JointBroken>,
+) {
+    for j in &world.joints {
+        let Ok((joint, mut forces)) = joints.get_mut(j.entity) else {
+            continue;
+        };
+        let state = &mut forces.state;
+        (state.linear, state.angular, state.axial, state.h) = (j.linear, j.angular, j.axial, j.h);
+        (forces.force, forces.torque) = (j.force, j.torque);
+        let force = j.force.length();
+        if force > joint.break_force {
+            let event = JointBroken {
+                entity: j.entity,
+                body1: joint.body1,
+                body2: joint.body2,
+                force,
+            };
+            broken.write(event);
+            commands.trigger(event);
+            commands.entity(j.entity).remove::<Joint>();
         }
     }
 }

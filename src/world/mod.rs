@@ -7,6 +7,7 @@ mod awake_tree;
 mod bounds_index;
 mod constraint;
 mod fixed_set;
+mod joint;
 mod manifold;
 
 pub(crate) use awake_tree::AwakeTree;
@@ -15,6 +16,7 @@ pub(crate) use constraint::{
     body, row_velocity, store,
 };
 pub(crate) use fixed_set::FixedSet;
+pub(crate) use joint::{JointConstraint, JointRows, ordered_pair};
 pub(crate) use manifold::{MAX_POINTS, Manifold};
 
 use bevy::platform::collections::HashMap;
@@ -247,6 +249,10 @@ pub struct PhysicsWorld {
     /// Last step's accumulated impulses by entity pair (and triangle, for a mesh pair:
     /// [`Manifold::sub`]), for warm starting.
     pub(crate) impulse_cache: HashMap<(Entity, Entity, u32), Manifold>,
+    /// This step's joints (empty in a scene without any).
+    pub(crate) joints: Vec<JointConstraint>,
+    /// Body pairs (ordered by entity) held by a joint that keeps them from colliding.
+    pub(crate) joint_pairs: bevy::platform::collections::HashSet<(Entity, Entity)>,
     /// Sleeping bodies that an awake body touched this step: they wake.
     pub(crate) wake: Vec<Entity>,
     /// The composed transforms of this step's parented bodies' parents (uniform scale).
@@ -319,6 +325,12 @@ impl PhysicsWorld {
     /// may already hold the game's next move, which the next step drives it to.
     pub fn kinematic_pose(&self, body: Entity) -> Option<(Vec3, Quat)> {
         self.kinematic_poses.get(&body).map(|k| (k.pos, k.rot))
+    }
+
+    /// Whether a joint keeps bodies `a` and `b` (owner entities) from colliding.
+    #[inline]
+    pub(crate) fn jointed(&self, a: Entity, b: Entity) -> bool {
+        !self.joint_pairs.is_empty() && self.joint_pairs.contains(&ordered_pair(a, b))
     }
 
     /// The current world pose of a collider during the step: its body's pose carried to

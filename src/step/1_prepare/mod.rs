@@ -8,6 +8,7 @@ mod fixed;
 mod gather;
 mod hierarchy;
 mod impulses;
+mod joints;
 mod kinematic;
 mod lifecycle;
 mod settings;
@@ -32,6 +33,7 @@ use gather::{BodyInput, gather_body};
 use hierarchy::{ChainQuery, parent_frame, unsupported, world_transform};
 use impulses::apply_impulse;
 pub use impulses::clear_impulses;
+pub use joints::prepare_joints;
 use kinematic::{Drive, drive_kinematic};
 pub use lifecycle::{
     PendingRechecks, SpawnCounter, number_collider, readmit_rejected, record_marker, record_removal,

@@ -29,8 +29,8 @@ pub fn collide_pairs(
             break;
         }
         let (a, b) = (&world.colliders[ia as usize], &world.colliders[ib as usize]);
-        // Filtered out by layers, or two sensors: not even a manifold.
-        if !a.filter.allows(&b.filter) {
+        // Filtered out by layers, or two sensors, or held by a joint: not even a manifold.
+        if !a.filter.allows(&b.filter) || world.jointed(a.owner, b.owner) {
             continue;
         }
         if a.filter.sensor || b.filter.sensor {

@@ -6,6 +6,7 @@
 mod contact;
 mod continuous;
 mod iterate;
+mod joint;
 mod stiffness;
 
 use bevy::prelude::*;
@@ -20,6 +21,7 @@ use crate::world::{
 pub use contact::{prepare_constraints, refresh_rows, sum_impulses};
 pub use continuous::sweep_against_fixed;
 pub use iterate::{apply_restitution, solve, stop_approach, warm_start};
+use joint::{joint_softness, solve_joints, store_joint_forces, warm_start_joints};
 pub use stiffness::{pair_size, substeps_for, wanted_hertz};
 
 /// The solver's stages in execution order. `PrepareContacts` runs once per step; the
@@ -68,7 +70,7 @@ pub fn solve_contacts(
 ) {
     let world = &mut *world;
     let dt = world.dt;
-    if world.manifolds.is_empty() || dt <= 0.0 {
+    if (world.manifolds.is_empty() && world.joints.is_empty()) || dt <= 0.0 {
         world.impulse_cache.clear();
         return;
     }
@@ -108,6 +110,15 @@ pub fn solve_contacts(
                 p.tangent_impulse *= scale;
             }
         }
+    }
+    for j in world
+        .joints
+        .iter_mut()
+        .filter(|j| j.h > 0.0 && j.h != params.h)
+    {
+        let scale = params.h / j.h;
+        (j.linear, j.angular) = (j.linear * scale, j.angular * scale);
+        j.axial = j.axial.map(|x| x * scale);
     }
     world.last_substep = params.h;
     world.substeps = n;
@@ -169,6 +180,7 @@ fn run_stage(
                     .all(|c| c.a != STATIC && c.b != STATIC),
                 "contacts with fixed colliders must come first"
             );
+            let ratio = ratio.max(joint_mass_ratio(&world.joints, bodies));
             scratch.iterations = iterations_for(settings.iterations, ratio);
             scratch.refresh = world.constraints.iter().any(|c| c.refresh);
             scratch.report = world.constraints.iter().any(|c| c.report);
@@ -187,7 +199,10 @@ fn run_stage(
                 scratch.free.push(fs);
             }
         }
-        SolverStage::WarmStart => warm_start(bodies, &world.constraints),
+        SolverStage::WarmStart => {
+            warm_start_joints(bodies, &world.joints);
+            warm_start(bodies, &world.constraints);
+        }
         SolverStage::Solve | SolverStage::Relax => {
             let use_bias = stage == SolverStage::Solve;
             // Contacts with fixed (static or sleeping) colliders come first (see
@@ -197,7 +212,11 @@ fn run_stage(
             // stacks creep 6.9 mm a minute awake (fixed last: 11.3, fixed first only: 7.4),
             // and the property tests find fewer bodies pushed into walls.
             let fixed = scratch.fixed_constraints;
+            let soft = joint_softness(params.hertz, params.max_hertz, h);
             for _ in 0..iterations {
+                // Joints first, then contacts (Box2D's order): the contacts have the
+                // last word on what touches.
+                solve_joints(bodies, &mut world.joints, &soft, h, use_bias);
                 let arms = &world.rolling_arms;
                 solve(bodies, &mut world.constraints, arms, h, use_bias);
                 solve(bodies, &mut world.constraints[..fixed], arms, h, use_bias);
@@ -229,7 +248,10 @@ fn run_stage(
             let fixed = scratch.fixed_constraints;
             stop_approach(bodies, &mut world.constraints[..fixed], &world.rolling_arms);
         }
-        SolverStage::StoreImpulses => store_impulses(world),
+        SolverStage::StoreImpulses => {
+            store_impulses(world);
+            store_joint_forces(&mut world.joints, &world.solver_bodies, h);
+        }
     }
 }
 
@@ -296,19 +318,41 @@ pub fn iterations_for(setting: u32, max_ratio: f32) -> u32 {
     setting.max(1).max(extra.min(8))
 }
 
-/// Marks and lists the dynamic and kinematic bodies that any manifold touches.
+/// The largest mass ratio across a joint between two dynamic bodies (1 when none): a
+/// light link holding a heavy ball needs the passes a heavy stack does.
+fn joint_mass_ratio(
+    joints: &[crate::world::JointConstraint],
+    bodies: &[crate::world::SolverBody],
+) -> f32 {
+    let inv_mass = |i: u32| {
+        if i == STATIC {
+            0.0
+        } else {
+            bodies[i as usize].inv_mass
+        }
+    };
+    joints
+        .iter()
+        .map(|j| (inv_mass(j.a), inv_mass(j.b)))
+        .filter(|&(a, b)| a > 0.0 && b > 0.0)
+        .map(|(a, b)| a.max(b) / a.min(b))
+        .fold(1.0, f32::max)
+}
+
+/// Marks and lists the dynamic and kinematic bodies that any manifold or joint touches.
 fn collect_active_bodies(world: &mut PhysicsWorld, active: &mut Vec<u32>) {
     active.clear();
     for b in world.bodies.iter_mut() {
         b.in_contact = false;
     }
-    for m in &world.manifolds {
-        for c in [m.a, m.b] {
-            let body = world.colliders[c as usize].body;
-            if body != STATIC && !world.bodies[body as usize].in_contact {
-                world.bodies[body as usize].in_contact = true;
-                active.push(body);
-            }
+    let (colliders, bodies) = (&world.colliders, &mut world.bodies);
+    let body = |c: u32| colliders[c as usize].body;
+    let manifolds = world.manifolds.iter().flat_map(|m| [body(m.a), body(m.b)]);
+    let joints = world.joints.iter().flat_map(|j| [j.a, j.b]);
+    for i in manifolds.chain(joints) {
+        if i != STATIC && !bodies[i as usize].in_contact {
+            bodies[i as usize].in_contact = true;
+            active.push(i);
         }
     }
     active.sort_unstable();

@@ -1,0 +1,292 @@
+//! Joints into the step: each [`Joint`] whose bodies are here becomes a
+//! [`JointConstraint`] at the start-of-step poses. A scene without joints returns at once.
+//!
+//! - A joint with invalid input (NaN anchors, a zero axis, limits the wrong way round) is
+//!   left out with [`PhysicsRejected`] and an error naming the field, until it changes.
+//! - A joint to a despawned body is removed (its `Joint` component), with a warning.
+//! - A side that is static (or the world) holds still; a side that sleeps holds still
+//!   this step and is woken if the other side is awake. A joint with no dynamic side is
+//!   ignored (two statics: with a warning, once).
+
+use bevy::platform::collections::{HashMap, HashSet};
+use bevy::prelude::*;
+
+use crate::body::{PhysicsRejected, Sleeping};
+use crate::joint::{Joint, JointForces, JointKind};
+use crate::limits::{self, MAX_FORCE, MAX_RATE, MAX_SIZE, MAX_SPEED};
+use crate::world::{JointConstraint, JointRows, PhysicsWorld, STATIC, ordered_pair};
+
+/// One side of a joint this step.
+struct Side {
+    /// Body index or [`STATIC`].
+    index: u32,
+    /// Its body's rotation at the start of the step (the world's: identity).
+    rot: Quat,
+    /// Its centre of mass, or for a still side the anchor itself, m.
+    origin: Vec3,
+    /// The anchor from `origin`, m.
+    arm: Vec3,
+    dynamic: bool,
+    asleep: Option<Entity>,
+}
+
+/// Why a side is not here.
+enum Missing {
+    /// The entity no longer exists.
+    Despawned,
+    /// Left out of the simulation (rejected): the joint waits for it.
+    Rejected,
+}
+
+/// What prepare reads of a body that is not awake.
+type StillItem = (
+    Option<&'static GlobalTransform>,
+    Has<Sleeping>,
+    Has<PhysicsRejected>,
+);
+
+/// Fills [`PhysicsWorld::joints`] for this step.
+#[allow(clippy::type_complexity)]
+pub fn prepare_joints(
+    mut commands: Commands,
+    mut world: ResMut<PhysicsWorld>,
+    mut joints: Query<(Entity, Ref<Joint>, &mut JointForces, Has<PhysicsRejected>)>,
+    still: Query<StillItem>,
+    mut index: Local<HashMap<Entity, u32>>,
+    mut ignored: Local<HashSet<Entity>>,
+) {
+    let world = &mut *world;
+    world.joints.clear();
+    world.joint_pairs.clear();
+    if joints.is_empty() {
+        return;
+    }
+    index.clear();
+    index.extend(
+        world
+            .bodies
+            .iter()
+            .enumerate()
+            .map(|(i, b)| (b.entity, i as u32)),
+    );
+    for (entity, joint, mut forces, rejected) in &mut joints {
+        if rejected {
+            if !joint.is_changed() {
+                continue;
+            }
+            commands.entity(entity).remove::<PhysicsRejected>();
+        }
+        if let Err((field, reason)) = check(&joint) {
+            error!(
+                "tumble: joint {entity} left out of the simulation: {field} is invalid ({reason})"
+            );
+            commands
+                .entity(entity)
+                .insert(PhysicsRejected { field, reason });
+            continue;
+        }
+        let side =
+            |body: Option<Entity>, anchor: Vec3| side_of(world, &index, &still, body, anchor);
+        let (a, b) = match (
+            side(joint.body1, joint.local_anchor1),
+            side(Some(joint.body2), joint.local_anchor2),
+        ) {
+            (Ok(a), Ok(b)) => (a, b),
+            (Err(Missing::Despawned), _) | (_, Err(Missing::Despawned)) => {
+                warn!(
+                    "tumble: joint {entity} holds a body that no longer exists; the joint is removed"
+                );
+                commands.entity(entity).remove::<Joint>();
+                continue;
+            }
+            _ => continue,
+        };
+        if !a.dynamic && !b.dynamic {
+            let both_static = a.asleep.is_none() && b.asleep.is_none();
+            if both_static && ignored.insert(entity) {
+                warn!("tumble: joint {entity} holds no dynamic body (two statics?); it is ignored");
+            }
+            continue;
+        }
+        // A sleeper held by a body that moves wakes (next step it is awake).
+        for (s, other) in [(&a, &b), (&b, &a)] {
+            if let (Some(e), true) = (s.asleep, other.index != STATIC) {
+                world.wake.push(e);
+            }
+        }
+        let state = &mut forces.state;
+        let rest = *state.rest.get_or_insert(a.rot.inverse() * b.rot);
+        let axis = a.rot * joint.local_axis1.normalize();
+        let (rows, limits, motor, spring) = match joint.kind {
+            JointKind::Fixed => (JointRows::Fixed, None, None, None),
+            JointKind::Spherical => (JointRows::Spherical, None, None, None),
+            JointKind::Revolute { limits, motor } => (JointRows::Revolute, limits, motor, None),
+            JointKind::Prismatic { limits, motor } => (JointRows::Prismatic, limits, motor, None),
+            JointKind::Distance { min, max, spring } => {
+                let spring = spring.map(|s| (s.rest, s.hertz, s.damping_ratio));
+                (JointRows::Distance, Some((min, max)), None, spring)
+            }
+        };
+        world.joints.push(JointConstraint {
+            entity,
+            a: a.index,
+            b: b.index,
+            rows,
+            ra: a.arm,
+            rb: b.arm,
+            offset: b.origin - a.origin,
+            axis,
+            rest: b.rot * rest.inverse() * a.rot.inverse(),
+            limits,
+            motor: motor.map(|m| (m.target_speed, m.max_force)),
+            spring,
+            linear: state.linear,
+            angular: state.angular,
+            axial: state.axial,
+            h: state.h,
+            force: Vec3::ZERO,
+            torque: Vec3::ZERO,
+        });
+        if !joint.collide_connected
+            && let Some(body1) = joint.body1
+        {
+            world.joint_pairs.insert(ordered_pair(body1, joint.body2));
+        }
+    }
+}
+
+/// Where one side of a joint is this step.
+fn side_of(
+    world: &PhysicsWorld,
+    index: &HashMap<Entity, u32>,
+    still: &Query<StillItem>,
+    body: Option<Entity>,
+    anchor: Vec3,
+) -> Result<Side, Missing> {
+    let Some(entity) = body else {
+        // The world: the anchor is a world point.
+        return Ok(Side {
+            index: STATIC,
+            rot: Quat::IDENTITY,
+            origin: anchor,
+            arm: Vec3::ZERO,
+            dynamic: false,
+            asleep: None,
+        });
+    };
+    if let Some(&i) = index.get(&entity) {
+        let (b, frame) = (&world.bodies[i as usize], &world.body_frames[i as usize]);
+        // The solver's orientation is the body's times its principal frame.
+        let rot = (b.q0 * frame.frame.inverse()).normalize();
+        return Ok(Side {
+            index: i,
+            rot,
+            origin: b.x0,
+            arm: rot * (anchor - frame.com),
+            dynamic: b.is_dynamic(),
+            asleep: None,
+        });
+    }
+    let Ok((global, asleep, rejected)) = still.get(entity) else {
+        return Err(Missing::Despawned);
+    };
+    if rejected {
+        return Err(Missing::Rejected);
+    }
+    // Static, asleep, or not yet admitted: it holds still at its pose.
+    let tf = global.map_or(Transform::IDENTITY, |g| g.compute_transform());
+    let rot = tf.rotation.normalize();
+    Ok(Side {
+        index: STATIC,
+        rot,
+        origin: tf.translation + rot * anchor,
+        arm: Vec3::ZERO,
+        dynamic: false,
+        asleep: asleep.then_some(entity),
+    })
+}
+
+/// A joint's own input: finite anchors within [`MAX_SIZE`], a usable axis, limits in
+/// order, a motor's speed and force, a distance's lengths and spring, the break force.
+fn check(j: &Joint) -> Result<(), (&'static str, String)> {
+    let named = |e: limits::Invalid| (e.field, e.reason);
+    limits::vector("Joint.local_anchor1", j.local_anchor1, MAX_SIZE).map_err(named)?;
+    limits::vector("Joint.local_anchor2", j.local_anchor2, MAX_SIZE).map_err(named)?;
+    let axis = j.local_axis1;
+    if !(axis.is_finite() && axis.length_squared() > 1e-12) {
+        return Err((
+            "Joint.local_axis1",
+            format!("{axis}: must be finite and not zero"),
+        ));
+    }
+    let ordered = |field, (lo, hi): (f32, f32), max: f32| {
+        if lo.is_finite() && hi.is_finite() && lo <= hi && lo >= -max && hi <= max {
+            Ok(())
+        } else {
+            Err((
+                field,
+                format!("({lo}, {hi}): must be finite, min ≤ max, within ±{max}"),
+            ))
+        }
+    };
+    match j.kind {
+        JointKind::Revolute { limits, motor } => {
+            if let Some(l) = limits {
+                ordered("Joint.kind.limits", l, std::f32::consts::PI)?;
+            }
+            if let Some(m) = motor {
+                limits::scalar(
+                    "Joint.kind.motor.target_speed",
+                    m.target_speed,
+                    -MAX_RATE..=MAX_RATE,
+                )
+                .map_err(named)?;
+                limits::scalar("Joint.kind.motor.max_force", m.max_force, 0.0..=MAX_FORCE)
+                    .map_err(named)?;
+            }
+        }
+        JointKind::Prismatic { limits, motor } => {
+            if let Some(l) = limits {
+                ordered("Joint.kind.limits", l, MAX_SIZE)?;
+            }
+            if let Some(m) = motor {
+                limits::scalar(
+                    "Joint.kind.motor.target_speed",
+                    m.target_speed,
+                    -MAX_SPEED..=MAX_SPEED,
+                )
+                .map_err(named)?;
+                limits::scalar("Joint.kind.motor.max_force", m.max_force, 0.0..=MAX_FORCE)
+                    .map_err(named)?;
+            }
+        }
+        JointKind::Distance { min, max, spring } => {
+            let ok =
+                min.is_finite() && min >= 0.0 && !max.is_nan() && min <= max && min <= MAX_SIZE;
+            if !ok {
+                return Err((
+                    "Joint.kind",
+                    format!("min {min}, max {max}: need 0 ≤ min ≤ max"),
+                ));
+            }
+            if let Some(s) = spring {
+                limits::scalar("Joint.kind.spring.rest", s.rest, 0.0..=MAX_SIZE).map_err(named)?;
+                limits::positive("Joint.kind.spring.hertz", s.hertz, MAX_RATE).map_err(named)?;
+                limits::scalar(
+                    "Joint.kind.spring.damping_ratio",
+                    s.damping_ratio,
+                    0.0..=MAX_RATE,
+                )
+                .map_err(named)?;
+            }
+        }
+        JointKind::Fixed | JointKind::Spherical => {}
+    }
+    if j.break_force.is_nan() || j.break_force <= 0.0 {
+        return Err((
+            "Joint.break_force",
+            format!("{}: must be > 0", j.break_force),
+        ));
+    }
+    Ok(())
+}

@@ -1,0 +1,423 @@
+//! Joints in the soft step, beside the contacts and like them (Box2D v3's recipe): each
+//! substep their accumulated impulses are applied again (warm start), then each pass
+//! solves their rows with a soft bias toward the position error, and the relax pass
+//! solves them rigidly without it. The anchors start at the step's start and turn with
+//! their bodies (`dq`); errors are measured from the bodies' motion this step (`dp`,
+//! `dq`), so they stay precise far from the origin.
+//!
+//! Rows, per kind: the point (a 3×3 block), the turns (a 3×3 block, or the two across a
+//! hinge's axis as a 2×2 block), the offsets across a slider's axis (2×2), and one-row
+//! motors, limits, springs and distances. Limits are speculative, like contacts: a limit
+//! not yet reached may be approached as far as it is, no farther, in one substep.
+
+use bevy::prelude::*;
+
+use crate::math::Softness;
+use crate::world::{JointConstraint, JointRows, SolverBody, body, store};
+
+/// Joint stiffness: twice the contact frequency (Box2D v3's choice), capped like the
+/// contacts' at a quarter of the substep rate.
+pub fn joint_softness(contact_hertz: f32, max_hertz: f32, h: f32) -> Softness {
+    Softness::new((2.0 * contact_hertz).min(max_hertz), JOINT_DAMPING_RATIO, h)
+}
+
+/// The damping ratio of the joints' position correction (Box2D v3's default).
+pub const JOINT_DAMPING_RATIO: f32 = 2.0;
+
+/// The joint's geometry now: anchors from the centres of mass, the offset from anchor A
+/// to anchor B (the point error), and the axis, all world frame.
+struct Now {
+    ra: Vec3,
+    rb: Vec3,
+    d: Vec3,
+    axis: Vec3,
+}
+
+fn now(j: &JointConstraint, a: &SolverBody, b: &SolverBody) -> Now {
+    let (ra, rb) = (a.dq * j.ra, b.dq * j.rb);
+    Now {
+        ra,
+        rb,
+        d: j.offset + (b.dp - a.dp) + rb - ra,
+        axis: a.dq * j.axis,
+    }
+}
+
+/// `r × x` as a matrix.
+fn skew(r: Vec3) -> Mat3 {
+    Mat3::from_cols(
+        Vec3::new(0.0, r.z, -r.y),
+        Vec3::new(-r.z, 0.0, r.x),
+        Vec3::new(r.y, -r.x, 0.0),
+    )
+}
+
+/// Linear impulse `p` on B at arm `arm_b`, its opposite on A at `arm_a`.
+fn apply_linear(a: &mut SolverBody, b: &mut SolverBody, arm_a: Vec3, arm_b: Vec3, p: Vec3) {
+    a.v -= a.inv_mass * p;
+    a.w -= a.inv_inertia * arm_a.cross(p);
+    b.v += b.inv_mass * p;
+    b.w += b.inv_inertia * arm_b.cross(p);
+}
+
+/// Angular impulse `l` on B, its opposite on A.
+fn apply_angular(a: &mut SolverBody, b: &mut SolverBody, l: Vec3) {
+    a.w -= a.inv_inertia * l;
+    b.w += b.inv_inertia * l;
+}
+
+/// Velocity of B's point at `arm_b` relative to A's at `arm_a`.
+fn point_velocity(a: &SolverBody, b: &SolverBody, arm_a: Vec3, arm_b: Vec3) -> Vec3 {
+    b.v + b.w.cross(arm_b) - a.v - a.w.cross(arm_a)
+}
+
+/// The inverse effective mass of a linear row along unit `n`.
+fn linear_k(a: &SolverBody, b: &SolverBody, arm_a: Vec3, arm_b: Vec3, n: Vec3) -> f32 {
+    let (ca, cb) = (arm_a.cross(n), arm_b.cross(n));
+    a.inv_mass + b.inv_mass + ca.dot(a.inv_inertia * ca) + cb.dot(b.inv_inertia * cb)
+}
+
+/// The inverse of `k`, or zero when the row cannot move (both sides immovable).
+fn inv(k: f32) -> f32 {
+    if k > 1e-12 { 1.0 / k } else { 0.0 }
+}
+
+/// B's rotation error relative to A as a rotation vector, rad (zero at rest).
+fn rotation_error(j: &JointConstraint, a: &SolverBody, b: &SolverBody) -> (Quat, Vec3) {
+    let mut q = (b.dq * j.rest * a.dq.inverse()).normalize();
+    if q.w < 0.0 {
+        q = -q;
+    }
+    (q, q.to_scaled_axis())
+}
+
+/// The angle of `q`'s turn about unit `axis`, rad, in (−π, π].
+fn twist_angle(q: Quat, axis: Vec3) -> f32 {
+    2.0 * Vec3::new(q.x, q.y, q.z).dot(axis).atan2(q.w)
+}
+
+/// A bilateral row's bias, mass scale and impulse scale for error `c`.
+fn bilateral(c: f32, soft: &Softness, use_bias: bool) -> (f32, f32, f32) {
+    if use_bias {
+        (soft.bias_rate * c, soft.mass_scale, soft.impulse_scale)
+    } else {
+        (0.0, 1.0, 0.0)
+    }
+}
+
+/// A one-sided row's (a limit's): `c` ≥ 0 is the room left, approached at most by `c/h`
+/// this substep; below zero it is pushed out softly.
+fn one_sided(c: f32, inv_h: f32, soft: &Softness, use_bias: bool) -> (f32, f32, f32) {
+    if c > 0.0 {
+        (c * inv_h, 1.0, 0.0)
+    } else {
+        bilateral(c, soft, use_bias)
+    }
+}
+
+/// Warm start: last substep's impulses applied again.
+pub fn warm_start_joints(bodies: &mut [SolverBody], joints: &[JointConstraint]) {
+    for j in joints {
+        let (mut a, mut b) = (body(bodies, j.a), body(bodies, j.b));
+        let f = now(j, &a, &b);
+        let axial = j.axial[0] + j.axial[1] - j.axial[2];
+        match j.rows {
+            JointRows::Fixed | JointRows::Spherical | JointRows::Revolute => {
+                apply_linear(&mut a, &mut b, f.ra, f.rb, j.linear);
+            }
+            JointRows::Prismatic => {
+                let p = j.linear + f.axis * axial;
+                apply_linear(&mut a, &mut b, f.ra + f.d, f.rb, p);
+            }
+            JointRows::Distance => {
+                let n = f.d.normalize_or(f.axis);
+                apply_linear(&mut a, &mut b, f.ra, f.rb, n * axial);
+            }
+        }
+        let mut l = j.angular;
+        if j.rows == JointRows::Revolute {
+            l += f.axis * axial;
+        }
+        apply_angular(&mut a, &mut b, l);
+        store(bodies, j.a, a);
+        store(bodies, j.b, b);
+    }
+}
+
+/// One pass over the joints: with `use_bias`, toward closing their errors (soft);
+/// without, rigidly on velocities (relax).
+pub fn solve_joints(
+    bodies: &mut [SolverBody],
+    joints: &mut [JointConstraint],
+    soft: &Softness,
+    h: f32,
+    use_bias: bool,
+) {
+    let inv_h = 1.0 / h;
+    for j in joints.iter_mut() {
+        let (mut a, mut b) = (body(bodies, j.a), body(bodies, j.b));
+        let f = now(j, &a, &b);
+        match j.rows {
+            JointRows::Fixed => {
+                solve_turns(j, &mut a, &mut b, soft, use_bias);
+                solve_point(j, &mut a, &mut b, &f, soft, use_bias);
+            }
+            JointRows::Spherical => solve_point(j, &mut a, &mut b, &f, soft, use_bias),
+            JointRows::Revolute => {
+                solve_hinge_axis(j, &mut a, &mut b, &f, h, soft, use_bias);
+                solve_hinge_turns(j, &mut a, &mut b, &f, soft, use_bias);
+                solve_point(j, &mut a, &mut b, &f, soft, use_bias);
+            }
+            JointRows::Prismatic => {
+                solve_slide_axis(j, &mut a, &mut b, &f, h, soft, use_bias);
+                solve_turns(j, &mut a, &mut b, soft, use_bias);
+                solve_slide_across(j, &mut a, &mut b, &f, soft, use_bias);
+            }
+            JointRows::Distance => solve_distance(j, &mut a, &mut b, &f, inv_h, soft, use_bias),
+        }
+        store(bodies, j.a, a);
+        store(bodies, j.b, b);
+    }
+}
+
+/// The anchors together: a 3×3 block.
+fn solve_point(
+    j: &mut JointConstraint,
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    f: &Now,
+    soft: &Softness,
+    use_bias: bool,
+) {
+    let k = Mat3::from_diagonal(Vec3::splat(a.inv_mass + b.inv_mass))
+        - skew(f.ra) * a.inv_inertia * skew(f.ra)
+        - skew(f.rb) * b.inv_inertia * skew(f.rb);
+    if k.determinant().abs() <= 1e-18 {
+        return;
+    }
+    let (bias_rate, mass_scale, impulse_scale) = bilateral(1.0, soft, use_bias);
+    let cdot = point_velocity(a, b, f.ra, f.rb);
+    let p = -mass_scale * (k.inverse() * (cdot + bias_rate * f.d)) - impulse_scale * j.linear;
+    j.linear += p;
+    apply_linear(a, b, f.ra, f.rb, p);
+}
+
+/// No relative turn: a 3×3 block on the rotation error.
+fn solve_turns(
+    j: &mut JointConstraint,
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    soft: &Softness,
+    use_bias: bool,
+) {
+    let k = a.inv_inertia + b.inv_inertia;
+    if k.determinant().abs() <= 1e-18 {
+        return;
+    }
+    let (_, e) = rotation_error(j, a, b);
+    let (bias_rate, mass_scale, impulse_scale) = bilateral(1.0, soft, use_bias);
+    let cdot = b.w - a.w;
+    let l = -mass_scale * (k.inverse() * (cdot + bias_rate * e)) - impulse_scale * j.angular;
+    j.angular += l;
+    apply_angular(a, b, l);
+}
+
+/// Solves the 2×2 block `k` (symmetric: k11, k12, k22) for `rhs`; zero if singular.
+fn solve2(k11: f32, k12: f32, k22: f32, rhs: Vec2) -> Vec2 {
+    let det = k11 * k22 - k12 * k12;
+    if det.abs() <= 1e-18 {
+        return Vec2::ZERO;
+    }
+    Vec2::new(k22 * rhs.x - k12 * rhs.y, k11 * rhs.y - k12 * rhs.x) / det
+}
+
+/// A hinge: no turn across its axis (the two rows as a 2×2 block).
+fn solve_hinge_turns(
+    j: &mut JointConstraint,
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    f: &Now,
+    soft: &Softness,
+    use_bias: bool,
+) {
+    let (t1, t2) = f.axis.any_orthonormal_pair();
+    let k = a.inv_inertia + b.inv_inertia;
+    let (kt1, kt2) = (k * t1, k * t2);
+    let (_, e) = rotation_error(j, a, b);
+    let (bias_rate, mass_scale, impulse_scale) = bilateral(1.0, soft, use_bias);
+    let w = b.w - a.w;
+    let rhs = Vec2::new(t1.dot(w + bias_rate * e), t2.dot(w + bias_rate * e));
+    let old = Vec2::new(t1.dot(j.angular), t2.dot(j.angular));
+    let x = solve2(t1.dot(kt1), t1.dot(kt2), t2.dot(kt2), rhs);
+    let l = -mass_scale * x - impulse_scale * old;
+    let new = old + l;
+    j.angular = t1 * new.x + t2 * new.y;
+    apply_angular(a, b, t1 * l.x + t2 * l.y);
+}
+
+/// A hinge's motor and angle limits, about its axis.
+fn solve_hinge_axis(
+    j: &mut JointConstraint,
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    f: &Now,
+    h: f32,
+    soft: &Softness,
+    use_bias: bool,
+) {
+    if j.motor.is_none() && j.limits.is_none() {
+        return;
+    }
+    let axis = f.axis;
+    let mass = inv(axis.dot((a.inv_inertia + b.inv_inertia) * axis));
+    if let Some((speed, max_force)) = j.motor {
+        let cdot = axis.dot(b.w - a.w) - speed;
+        let max = max_force * h;
+        let old = j.axial[0];
+        j.axial[0] = (old - mass * cdot).clamp(-max, max);
+        apply_angular(a, b, axis * (j.axial[0] - old));
+    }
+    if let Some((lo, hi)) = j.limits {
+        let (q, _) = rotation_error(j, a, b);
+        let angle = twist_angle(q, axis);
+        for (slot, room, sign) in [(1, angle - lo, 1.0), (2, hi - angle, -1.0)] {
+            let (bias, mass_scale, impulse_scale) = one_sided(room, 1.0 / h, soft, use_bias);
+            let cdot = sign * axis.dot(b.w - a.w);
+            let old = j.axial[slot];
+            let l = -mass * mass_scale * (cdot + bias) - impulse_scale * old;
+            j.axial[slot] = (old + l).max(0.0);
+            apply_angular(a, b, axis * (sign * (j.axial[slot] - old)));
+        }
+    }
+}
+
+/// A slider's motor and offset limits, along its axis.
+fn solve_slide_axis(
+    j: &mut JointConstraint,
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    f: &Now,
+    h: f32,
+    soft: &Softness,
+    use_bias: bool,
+) {
+    if j.motor.is_none() && j.limits.is_none() {
+        return;
+    }
+    let (axis, arm_a) = (f.axis, f.ra + f.d);
+    let mass = inv(linear_k(a, b, arm_a, f.rb, axis));
+    if let Some((speed, max_force)) = j.motor {
+        let cdot = axis.dot(point_velocity(a, b, arm_a, f.rb)) - speed;
+        let max = max_force * h;
+        let old = j.axial[0];
+        j.axial[0] = (old - mass * cdot).clamp(-max, max);
+        apply_linear(a, b, arm_a, f.rb, axis * (j.axial[0] - old));
+    }
+    if let Some((lo, hi)) = j.limits {
+        let offset = axis.dot(f.d);
+        for (slot, room, sign) in [(1, offset - lo, 1.0), (2, hi - offset, -1.0)] {
+            let (bias, mass_scale, impulse_scale) = one_sided(room, 1.0 / h, soft, use_bias);
+            let cdot = sign * axis.dot(point_velocity(a, b, arm_a, f.rb));
+            let old = j.axial[slot];
+            let l = -mass * mass_scale * (cdot + bias) - impulse_scale * old;
+            j.axial[slot] = (old + l).max(0.0);
+            apply_linear(a, b, arm_a, f.rb, axis * (sign * (j.axial[slot] - old)));
+        }
+    }
+}
+
+/// A slider: no offset across its axis (a 2×2 block). A's arm reaches B's anchor.
+fn solve_slide_across(
+    j: &mut JointConstraint,
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    f: &Now,
+    soft: &Softness,
+    use_bias: bool,
+) {
+    let (t1, t2) = f.axis.any_orthonormal_pair();
+    let arm_a = f.ra + f.d;
+    let row = |t: Vec3| (arm_a.cross(t), f.rb.cross(t));
+    let ((a1, b1), (a2, b2)) = (row(t1), row(t2));
+    let linear = a.inv_mass + b.inv_mass;
+    let k11 = linear + a1.dot(a.inv_inertia * a1) + b1.dot(b.inv_inertia * b1);
+    let k22 = linear + a2.dot(a.inv_inertia * a2) + b2.dot(b.inv_inertia * b2);
+    let k12 = a1.dot(a.inv_inertia * a2) + b1.dot(b.inv_inertia * b2);
+    let (bias_rate, mass_scale, impulse_scale) = bilateral(1.0, soft, use_bias);
+    let v = point_velocity(a, b, arm_a, f.rb) + bias_rate * f.d;
+    let old = Vec2::new(t1.dot(j.linear), t2.dot(j.linear));
+    let x = solve2(k11, k12, k22, Vec2::new(t1.dot(v), t2.dot(v)));
+    let l = -mass_scale * x - impulse_scale * old;
+    let new = old + l;
+    j.linear = t1 * new.x + t2 * new.y;
+    apply_linear(a, b, arm_a, f.rb, t1 * l.x + t2 * l.y);
+}
+
+/// The distance between the anchors: rigid, or a spring and limits.
+fn solve_distance(
+    j: &mut JointConstraint,
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    f: &Now,
+    inv_h: f32,
+    soft: &Softness,
+    use_bias: bool,
+) {
+    let length = f.d.length();
+    let n = if length > 1e-6 { f.d / length } else { f.axis };
+    let mass = inv(linear_k(a, b, f.ra, f.rb, n));
+    let speed = |a: &SolverBody, b: &SolverBody| n.dot(point_velocity(a, b, f.ra, f.rb));
+    let (lo, hi) = j.limits.unwrap_or((0.0, f32::INFINITY));
+    if lo >= hi {
+        let (bias, mass_scale, impulse_scale) = bilateral(length - lo, soft, use_bias);
+        let l = -mass * mass_scale * (speed(a, b) + bias) - impulse_scale * j.axial[0];
+        j.axial[0] += l;
+        apply_linear(a, b, f.ra, f.rb, n * l);
+        return;
+    }
+    if let Some((rest, hertz, zeta)) = j.spring {
+        // The spring acts in the relax pass too: it is the joint's physics, not a
+        // correction.
+        let s = Softness::new(hertz, zeta, 1.0 / inv_h);
+        let bias = s.bias_rate * (length - rest);
+        let l = -mass * s.mass_scale * (speed(a, b) + bias) - s.impulse_scale * j.axial[0];
+        j.axial[0] += l;
+        apply_linear(a, b, f.ra, f.rb, n * l);
+    }
+    for (slot, room, sign, present) in [
+        (1, length - lo, 1.0, lo > 0.0),
+        (2, hi - length, -1.0, hi.is_finite()),
+    ] {
+        if !present {
+            continue;
+        }
+        let (bias, mass_scale, impulse_scale) = one_sided(room, inv_h, soft, use_bias);
+        let old = j.axial[slot];
+        let l = -mass * mass_scale * (sign * speed(a, b) + bias) - impulse_scale * old;
+        j.axial[slot] = (old + l).max(0.0);
+        apply_linear(a, b, f.ra, f.rb, n * (sign * (j.axial[slot] - old)));
+    }
+}
+
+/// Each joint's force (on B, N, world) and torque (N·m) in the last substep of `h` s,
+/// and the substep its impulses are per.
+pub fn store_joint_forces(joints: &mut [JointConstraint], bodies: &[SolverBody], h: f32) {
+    for j in joints.iter_mut() {
+        (j.force, j.torque) = joint_force(j, bodies, h);
+        j.h = h;
+    }
+}
+
+fn joint_force(j: &JointConstraint, bodies: &[SolverBody], h: f32) -> (Vec3, Vec3) {
+    let (a, b) = (body(bodies, j.a), body(bodies, j.b));
+    let f = now(j, &a, &b);
+    let axial = j.axial[0] + j.axial[1] - j.axial[2];
+    let (mut force, mut torque) = (j.linear, j.angular);
+    match j.rows {
+        JointRows::Revolute => torque += f.axis * axial,
+        JointRows::Prismatic => force += f.axis * axial,
+        JointRows::Distance => force += f.d.normalize_or(f.axis) * axial,
+        JointRows::Fixed | JointRows::Spherical => {}
+    }
+    (force / h, torque / h)
+}
