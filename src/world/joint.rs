@@ -3,6 +3,8 @@
 
 use bevy::prelude::*;
 
+use crate::math::Softness;
+
 /// A pair of entities in a fixed order (the lower first).
 pub(crate) fn ordered_pair(a: Entity, b: Entity) -> (Entity, Entity) {
     if a <= b { (a, b) } else { (b, a) }
@@ -62,4 +64,10 @@ pub(crate) struct JointConstraint {
     /// the solve.
     pub force: Vec3,
     pub torque: Vec3,
+    /// The force it carried last step, N (what its stiffness is chosen for).
+    pub load: f32,
+    /// The length its allowed sag is a fraction of, m: its longest arm or its length.
+    pub size: f32,
+    /// Its soft-step coefficients this step (set by the solver).
+    pub softness: Softness,
 }

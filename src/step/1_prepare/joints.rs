@@ -14,6 +14,7 @@ use bevy::prelude::*;
 use crate::body::{PhysicsRejected, Sleeping};
 use crate::joint::{Joint, JointForces, JointKind};
 use crate::limits::{self, MAX_FORCE, MAX_RATE, MAX_SIZE, MAX_SPEED};
+use crate::math::Softness;
 use crate::world::{JointConstraint, JointRows, PhysicsWorld, STATIC, ordered_pair};
 
 /// One side of a joint this step.
@@ -146,12 +147,28 @@ pub fn prepare_joints(
             h: state.h,
             force: Vec3::ZERO,
             torque: Vec3::ZERO,
+            load: forces.force.length(),
+            size: a
+                .arm
+                .length()
+                .max(b.arm.length())
+                .max(length_of(&joint.kind)),
+            softness: Softness::new(0.0, 0.0, 1.0),
         });
         if !joint.collide_connected
             && let Some(body1) = joint.body1
         {
             world.joint_pairs.insert(ordered_pair(body1, joint.body2));
         }
+    }
+}
+
+/// A distance joint's longest length, m (0 for the other kinds, and for a spring or rope
+/// without one).
+fn length_of(kind: &JointKind) -> f32 {
+    match *kind {
+        JointKind::Distance { max, .. } if max.is_finite() => max,
+        _ => 0.0,
     }
 }
 

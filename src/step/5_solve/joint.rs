@@ -13,13 +13,36 @@
 use bevy::prelude::*;
 
 use crate::math::Softness;
-use crate::world::{JointConstraint, JointRows, SolverBody, body, store};
+use crate::world::{ContactParams, JointConstraint, JointRows, SolverBody, body, store};
 
-/// Joint stiffness: twice the contact frequency (Box2D v3's choice), capped like the
-/// contacts' at a quarter of the substep rate.
-pub fn joint_softness(contact_hertz: f32, max_hertz: f32, h: f32) -> Softness {
-    Softness::new((2.0 * contact_hertz).min(max_hertz), JOINT_DAMPING_RATIO, h)
+/// The frequency a joint would like and the one it needs, Hz.
+///
+/// A soft joint is a stiff spring of k = m_eff·ω² across its rows: carrying a load T it
+/// opens by T/k. Light bodies holding a heavy one (a chain of 0.1 kg links under a 10 kg
+/// ball: m_eff 0.05 kg, T 127 N) open by centimetres at the contacts' frequencies, so
+/// each joint asks for the frequency that holds its opening to `max_sag` of its size:
+/// ω ≥ √(T / (m_eff · max_sag · size)). That one is *needed* (it raises the substeps, as
+/// a heavy stack's contacts do); otherwise a joint wants twice the contact frequency
+/// (Box2D v3's choice). Both are capped by the caller at a quarter of the substep rate.
+pub fn joint_hertz(j: &JointConstraint, bodies: &[SolverBody], p: &ContactParams) -> (f32, f32) {
+    let (a, b) = (body(bodies, j.a), body(bodies, j.b));
+    let base = 2.0 * p.hertz;
+    // The lightest direction: along the offset (where a chain pulls), by the linear
+    // masses alone when there is none.
+    let n = j.offset.normalize_or(Vec3::Y);
+    let k = linear_k(&a, &b, j.ra, j.rb, n);
+    if k <= 0.0 || j.load <= 0.0 {
+        return (base, 0.0);
+    }
+    let omega = (j.load * k / (p.max_sag * j.size.max(MIN_JOINT_SIZE))).sqrt();
+    let needed = omega / std::f32::consts::TAU;
+    let needed = if needed.is_finite() { needed } else { 0.0 };
+    (base.max(needed), needed)
 }
+
+/// The least size a joint's sag is measured against, m (a joint at both centres of mass
+/// has no arms).
+pub const MIN_JOINT_SIZE: f32 = 0.05;
 
 /// The damping ratio of the joints' position correction (Box2D v3's default).
 pub const JOINT_DAMPING_RATIO: f32 = 2.0;
@@ -149,7 +172,6 @@ pub fn warm_start_joints(bodies: &mut [SolverBody], joints: &[JointConstraint]) 
 pub fn solve_joints(
     bodies: &mut [SolverBody],
     joints: &mut [JointConstraint],
-    soft: &Softness,
     h: f32,
     use_bias: bool,
 ) {
@@ -157,6 +179,7 @@ pub fn solve_joints(
     for j in joints.iter_mut() {
         let (mut a, mut b) = (body(bodies, j.a), body(bodies, j.b));
         let f = now(j, &a, &b);
+        let soft = &j.softness.clone();
         match j.rows {
             JointRows::Fixed => {
                 solve_turns(j, &mut a, &mut b, soft, use_bias);

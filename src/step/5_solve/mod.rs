@@ -12,7 +12,7 @@ mod stiffness;
 use bevy::prelude::*;
 
 use crate::effects::Effects;
-use crate::math::{FreeStep, Inertial, free_substep, rotate};
+use crate::math::{FreeStep, Inertial, Softness, free_substep, rotate};
 use crate::settings::{Gravity, Integrator, SolverSettings};
 use crate::world::{
     ContactConstraint, ContactParams, PhysicsWorld, STATIC, is_isotropic, world_inv_inertia,
@@ -21,7 +21,9 @@ use crate::world::{
 pub use contact::{prepare_constraints, refresh_rows, sum_impulses};
 pub use continuous::sweep_against_fixed;
 pub use iterate::{apply_restitution, solve, stop_approach, warm_start};
-use joint::{joint_softness, solve_joints, store_joint_forces, warm_start_joints};
+use joint::{
+    JOINT_DAMPING_RATIO, joint_hertz, solve_joints, store_joint_forces, warm_start_joints,
+};
 pub use stiffness::{pair_size, substeps_for, wanted_hertz};
 
 /// The solver's stages in execution order. `PrepareContacts` runs once per step; the
@@ -181,6 +183,10 @@ fn run_stage(
                 "contacts with fixed colliders must come first"
             );
             let ratio = ratio.max(joint_mass_ratio(&world.joints, bodies));
+            for j in world.joints.iter_mut() {
+                let (wanted, _) = joint_hertz(j, bodies, &stiffness);
+                j.softness = Softness::new(wanted.min(stiffness.max_hertz), JOINT_DAMPING_RATIO, h);
+            }
             scratch.iterations = iterations_for(settings.iterations, ratio);
             scratch.refresh = world.constraints.iter().any(|c| c.refresh);
             scratch.report = world.constraints.iter().any(|c| c.report);
@@ -212,11 +218,10 @@ fn run_stage(
             // stacks creep 6.9 mm a minute awake (fixed last: 11.3, fixed first only: 7.4),
             // and the property tests find fewer bodies pushed into walls.
             let fixed = scratch.fixed_constraints;
-            let soft = joint_softness(params.hertz, params.max_hertz, h);
             for _ in 0..iterations {
                 // Joints first, then contacts (Box2D's order): the contacts have the
                 // last word on what touches.
-                solve_joints(bodies, &mut world.joints, &soft, h, use_bias);
+                solve_joints(bodies, &mut world.joints, h, use_bias);
                 let arms = &world.rolling_arms;
                 solve(bodies, &mut world.constraints, arms, h, use_bias);
                 solve(bodies, &mut world.constraints[..fixed], arms, h, use_bias);
@@ -290,6 +295,9 @@ fn choose_substeps(world: &PhysicsWorld, p: &ContactParams, min: u32, max: u32) 
         let resting = m.normal.dot(vb - va).abs() <= resting_speed;
         let wanted = wanted_hertz(p, ima, imb, load, size, resting);
         stiffest = stiffest.max(wanted.needed);
+    }
+    for j in &world.joints {
+        stiffest = stiffest.max(joint_hertz(j, &world.solver_bodies, p).1);
     }
     substeps_for(stiffest, world.dt, min, max)
 }
