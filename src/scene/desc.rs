@@ -36,6 +36,10 @@ pub struct SceneDesc {
     /// The bodies, single or in generated groups. Default none.
     #[serde(default)]
     pub bodies: Vec<BodyGroup>,
+    /// Joints between the bodies (by index, groups expanded) or to the world. Default
+    /// none.
+    #[serde(default)]
+    pub joints: Vec<super::joints::JointGroup>,
 }
 
 /// Simulation settings a scene asks for.

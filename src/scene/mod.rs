@@ -6,11 +6,13 @@
 mod check;
 mod desc;
 mod generate;
+mod joints;
 #[cfg(feature = "viz")]
 mod loader;
 
 pub use desc::*;
 pub use generate::{expand_group, group_size, rock_points};
+pub use joints::{JointDesc, JointGroup, JointKindDesc};
 #[cfg(feature = "viz")]
 pub use loader::SceneLoader;
 
@@ -118,7 +120,8 @@ impl SceneDesc {
                 Err(why) => error!("tumble: scene {:?}: a mesh is left out: {why}", self.name),
             }
         }
-        self.expanded_bodies()
+        let bodies: Vec<Entity> = self
+            .expanded_bodies()
             .iter()
             .map(|b| {
                 let mut e = commands.spawn(body_bundle(b));
@@ -134,7 +137,16 @@ impl SceneDesc {
                 }
                 e.id()
             })
-            .collect()
+            .collect();
+        for joint in self.joints.iter().flat_map(|g| g.expand()) {
+            match joint.joint(&bodies) {
+                Ok(j) => {
+                    commands.spawn((SceneEntity, Name::new("joint"), j));
+                }
+                Err(why) => error!("tumble: scene {:?}: a joint is left out: {why}", self.name),
+            }
+        }
+        bodies
     }
 
     /// Spawns into a `World` directly (tests, benches).
