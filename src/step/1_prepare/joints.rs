@@ -41,7 +41,9 @@ enum Missing {
 
 /// What prepare reads of a body that is not awake.
 type StillItem = (
+    Option<&'static Transform>,
     Option<&'static GlobalTransform>,
+    Has<ChildOf>,
     Has<Sleeping>,
     Has<PhysicsRejected>,
 );
@@ -204,14 +206,20 @@ fn side_of(
             asleep: None,
         });
     }
-    let Ok((global, asleep, rejected)) = still.get(entity) else {
+    let Ok((local, global, parented, asleep, rejected)) = still.get(entity) else {
         return Err(Missing::Despawned);
     };
     if rejected {
         return Err(Missing::Rejected);
     }
-    // Static, asleep, or not yet admitted: it holds still at its pose.
-    let tf = global.map_or(Transform::IDENTITY, |g| g.compute_transform());
+    // Static, asleep, or not yet admitted: it holds still at its pose — its Transform
+    // (a body spawned this frame has no GlobalTransform yet), under a parent its
+    // GlobalTransform.
+    let tf = match (local, global) {
+        (Some(tf), _) if !parented => *tf,
+        (_, Some(g)) => g.compute_transform(),
+        _ => Transform::IDENTITY,
+    };
     let rot = tf.rotation.normalize();
     Ok(Side {
         index: STATIC,
