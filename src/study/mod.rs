@@ -3,10 +3,12 @@
 //! substeps; each run reports its error, energy drift and CPU time per simulated second.
 //! `examples/accuracy_study.rs` writes the CSV and SVG plots.
 
+mod pendulum;
 mod plots;
 mod scenarios;
 
-pub use plots::write_plots;
+pub use plots::{write_double_pendulum_plot, write_plots};
+pub use pendulum::{HORIZON, PARTED, double_pendulum_divergence, pendulum_energy_series};
 pub use scenarios::{Measure, SCENARIOS, Scenario};
 
 use std::time::Instant;
@@ -128,6 +130,50 @@ pub fn iteration_sweep(repeats: usize) -> Vec<Row> {
                 };
                 rows.push(run(scenario, config, repeats));
             }
+        }
+    }
+    rows
+}
+
+/// The double pendulum at every integrator × step rate × {1, 4} substeps: how long each
+/// run stays with the reference (s).
+pub fn double_pendulum_sweep() -> Vec<(Config, f64)> {
+    let mut out = Vec::new();
+    for integrator in Integrator::ALL {
+        for &hz in &RATES {
+            for substeps in [1, 4] {
+                let config = Config {
+                    integrator,
+                    hz,
+                    substeps,
+                    iterations: 1,
+                };
+                out.push((config, double_pendulum_divergence(config)));
+            }
+        }
+    }
+    out
+}
+
+/// The substep counts the substep sweep tries (`SUBSTEPS`).
+pub const SUBSTEPS: [u32; 7] = [1, 2, 4, 8, 16, 32, 64];
+
+/// The spinning box and the pendulum at 60 Hz, semi-implicit, over [`SUBSTEPS`]: more
+/// substeps must never cost accuracy (energy drift and error).
+pub fn substep_sweep(repeats: usize) -> Vec<Row> {
+    let mut rows = Vec::new();
+    for scenario in SCENARIOS
+        .iter()
+        .filter(|s| ["spinning_box", "pendulum"].contains(&s.name))
+    {
+        for substeps in SUBSTEPS {
+            let config = Config {
+                integrator: Integrator::SemiImplicitEuler,
+                hz: 60.0,
+                substeps,
+                iterations: 1,
+            };
+            rows.push(run(scenario, config, repeats));
         }
     }
     rows

@@ -1,6 +1,7 @@
 //! The study's SVG plots: work-precision (error against CPU time, log-log), convergence
 //! (error against h with order-1 and order-4 guides and fitted orders), energy over time at
-//! h = 1/60, and the near-separatrix box's period error against its energy drift.
+//! h = 1/60 (the spinning box, the pendulum), the near-separatrix box's period error
+//! against its energy drift, and the double pendulum's time with its reference.
 
 use std::path::Path;
 
@@ -8,6 +9,7 @@ use plotters::coord::Shift;
 use plotters::coord::combinators::LogCoord;
 use plotters::prelude::*;
 
+use super::pendulum::pendulum_energy_series;
 use super::scenarios::spinning_energy_series;
 use super::{Config, Row, SCENARIOS, fitted_order};
 use crate::settings::Integrator;
@@ -54,6 +56,17 @@ fn finish<'a, 'b, X: Ranged, Y: Ranged>(
     Ok(())
 }
 
+/// A log axis's label: decades only (`1e-3`), none between them (their labels ran into
+/// each other: `6e-3 7e-38e-39e-3`).
+fn decade(v: &f64) -> String {
+    let exponent = v.log10();
+    if (exponent - exponent.round()).abs() < 1e-6 {
+        format!("1e{}", exponent.round() as i32)
+    } else {
+        String::new()
+    }
+}
+
 /// A log-log chart in the study's style, axes drawn.
 type LogLog<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>;
 
@@ -73,8 +86,8 @@ fn log_log_chart<'a, 'b>(
     chart
         .configure_mesh()
         .light_line_style(RGBColor(236, 236, 236))
-        .y_label_formatter(&|v| format!("{v:.0e}"))
-        .x_label_formatter(&|v| format!("{v:.0e}"))
+        .y_label_formatter(&decade)
+        .x_label_formatter(&decade)
         .x_desc(x_desc)
         .y_desc(y_desc)
         .draw()?;
@@ -89,6 +102,7 @@ pub fn write_plots(rows: &[Row], dir: &Path) -> Res {
     }
     convergence(rows, &dir.join("convergence.svg"))?;
     energy_over_time(&dir.join("energy_60hz.svg"))?;
+    pendulum_energy(&dir.join("pendulum_energy_60hz.svg"))?;
     separatrix(rows, &dir.join("separatrix.svg"))?;
     Ok(())
 }
@@ -156,16 +170,20 @@ fn convergence(rows: &[Row], path: &Path) -> Res {
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], c.stroke_width(2)));
         chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
     }
-    // Guides through the coarsest point of each family.
+    // Each guide through the coarsest point of the family it compares with, over that
+    // family's own step sizes, cut where it would leave the frame.
     for (order, anchor) in [
         (1.0, pick(Integrator::SemiImplicitEuler)),
         (4.0, pick(Integrator::Rk4)),
     ] {
         if let Some(&(h, e)) = anchor.iter().max_by(|a, b| a.0.total_cmp(&b.0)) {
-            let guide: Vec<(f64, f64)> = [x0, x1]
+            let lo = anchor.iter().map(|p| p.0).fold(f64::MAX, f64::min);
+            // e·(x/h)^order stays within [y0, y1] for x in [h·(y0/e)^(1/order), h·(y1/e)^(1/order)].
+            let x_lo = lo.max(h * (y0 / e).powf(1.0 / order));
+            let x_hi = h.min(h * (y1 / e).powf(1.0 / order));
+            let guide: Vec<(f64, f64)> = [x_lo, x_hi]
                 .iter()
                 .map(|&x| (x, e * (x / h).powf(order)))
-                .filter(|p| p.1 >= y0 && p.1 <= y1 * 4.0)
                 .collect();
             chart
                 .draw_series(LineSeries::new(guide, BLACK.mix(0.4)))?
@@ -206,7 +224,7 @@ fn energy_over_time(path: &Path) -> Res {
     chart
         .configure_mesh()
         .light_line_style(RGBColor(236, 236, 236))
-        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .y_label_formatter(&decade)
         .x_desc("t (s)")
         .y_desc("E / E0")
         .draw()?;
@@ -255,6 +273,87 @@ fn separatrix(rows: &[Row], path: &Path) -> Res {
             )?
             .label(format!("{integrator:?}"))
             .legend(move |(x, y)| Circle::new((x + 8, y), 4, c.filled()));
+    }
+    finish(&mut chart, &root)
+}
+
+/// The single pendulum's swing energy over 20 s at h = 1/60, 1 substep, per integrator.
+fn pendulum_energy(path: &Path) -> Res {
+    let root = canvas(path)?;
+    let series: Vec<(Integrator, Vec<(f64, f64)>)> = Integrator::ALL
+        .iter()
+        .map(|&i| {
+            let config = Config {
+                integrator: i,
+                hz: 60.0,
+                substeps: 1,
+                iterations: 1,
+            };
+            (i, pendulum_energy_series(config))
+        })
+        .collect();
+    let (lo, hi) = series
+        .iter()
+        .flat_map(|(_, p)| p.iter().map(|q| q.1))
+        .filter(|v| v.is_finite())
+        .fold((1.0f64, 1.0f64), |(a, b), v| (a.min(v), b.max(v)));
+    let pad = (hi - lo).max(1e-3) * 0.1;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            "Pendulum (1 m, 60°): swing energy / initial, h = 1/60, 1 substep",
+            ("sans-serif", 20),
+        )
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(70)
+        .build_cartesian_2d(0.0..20.0, (lo - pad)..(hi + pad))?;
+    chart
+        .configure_mesh()
+        .light_line_style(RGBColor(236, 236, 236))
+        .x_desc("t (s)")
+        .y_desc("E / E0")
+        .draw()?;
+    for (integrator, pts) in series {
+        let c = color(integrator);
+        chart
+            .draw_series(LineSeries::new(
+                pts.into_iter().filter(|p| p.1.is_finite()),
+                c.stroke_width(2),
+            ))?
+            .label(format!("{integrator:?}"))
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], c.stroke_width(2)));
+    }
+    finish(&mut chart, &root)
+}
+
+/// The double pendulum: how long each run stays within `PARTED` of the reference,
+/// against the step.
+pub fn write_double_pendulum_plot(points: &[(Config, f64)], path: &Path) -> Res {
+    let root = canvas(path)?;
+    let (x0, x1) = bounds(points.iter().map(|p| 1.0 / p.0.hz));
+    let (y0, y1) = bounds(points.iter().map(|p| p.1));
+    let caption = "Double pendulum from the horizontal: time until 5 cm off the reference";
+    let desc = ("h (s)", "time with the reference (s)");
+    let mut chart = log_log_chart(&root, caption, (x0, x1), (y0, y1), desc)?;
+    for integrator in Integrator::ALL {
+        for substeps in [1, 4] {
+            let pts: Vec<(f64, f64)> = points
+                .iter()
+                .filter(|p| p.0.integrator == integrator && p.0.substeps == substeps)
+                .map(|p| (1.0 / p.0.hz, p.1))
+                .collect();
+            let c = color(integrator);
+            let style = if substeps == 1 {
+                c.stroke_width(2)
+            } else {
+                c.mix(0.5).stroke_width(2)
+            };
+            chart
+                .draw_series(LineSeries::new(pts.clone(), style))?
+                .label(format!("{integrator:?}, {substeps} substep(s)"))
+                .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], style));
+            chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
+        }
     }
     finish(&mut chart, &root)
 }

@@ -61,6 +61,11 @@ pub const SCENARIOS: &[Scenario] = &[
         run: slide_to_roll,
     },
     Scenario {
+        name: "pendulum",
+        unit: "period error (relative, 60° swing)",
+        run: super::pendulum::pendulum,
+    },
+    Scenario {
         name: "box_stack",
         unit: "top drift (m); max = deepest penetration (m)",
         run: box_stack,

@@ -1,16 +1,20 @@
-//! Debug gizmos, each switchable: contact points with their normals, the broad phase's
-//! swept bounding boxes, and body velocities.
+//! Debug gizmos, each switchable: joints (their anchors and what joins them), contact
+//! points with their normals, the broad phase's swept bounding boxes, and body
+//! velocities.
 
 use bevy::prelude::*;
 
+use crate::joint::{Joint, JointKind};
 use crate::world::{PhysicsWorld, STATIC};
 
 /// Draws the gizmos [`DebugRenderSettings`] switches on.
 pub struct DebugRenderPlugin;
 
-/// Which debug gizmos are drawn (all off by default).
-#[derive(Resource, Clone, Copy, Debug, Default)]
+/// Which debug gizmos are drawn (joints on, the rest off by default).
+#[derive(Resource, Clone, Copy, Debug)]
 pub struct DebugRenderSettings {
+    /// Joints: a line between their anchors (a string, a rod) and a dot at each.
+    pub joints: bool,
     /// Contact points and their normals.
     pub contacts: bool,
     /// The broad phase's swept, fattened bounding boxes.
@@ -19,10 +23,57 @@ pub struct DebugRenderSettings {
     pub velocities: bool,
 }
 
+impl Default for DebugRenderSettings {
+    fn default() -> Self {
+        Self {
+            joints: true,
+            contacts: false,
+            aabbs: false,
+            velocities: false,
+        }
+    }
+}
+
 impl Plugin for DebugRenderPlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<DebugRenderSettings>()
-            .add_systems(Update, draw_debug);
+            .add_systems(Update, (draw_debug, draw_joints));
+    }
+}
+
+/// Each joint's anchors, joined by a line: at the bodies' rendered poses.
+fn draw_joints(
+    settings: Res<DebugRenderSettings>,
+    joints: Query<&Joint>,
+    bodies: Query<&GlobalTransform>,
+    mut gizmos: Gizmos,
+) {
+    if !settings.joints {
+        return;
+    }
+    for j in &joints {
+        let anchor = |body: Option<Entity>, local: Vec3| match body {
+            None => Some(local),
+            Some(e) => bodies.get(e).ok().map(|g| {
+                let (_, rot, at) = g.to_scale_rotation_translation();
+                at + rot * local
+            }),
+        };
+        let (Some(a), Some(b)) = (
+            anchor(j.body1, j.local_anchor1),
+            anchor(Some(j.body2), j.local_anchor2),
+        ) else {
+            continue;
+        };
+        let color = match j.kind {
+            JointKind::Distance { .. } => Color::srgb(0.85, 0.85, 0.8),
+            JointKind::Revolute { .. } | JointKind::Prismatic { .. } => Color::srgb(1.0, 0.6, 0.2),
+            JointKind::Fixed | JointKind::Spherical => Color::srgb(0.3, 0.8, 1.0),
+        };
+        gizmos.line(a, b, color);
+        for p in [a, b] {
+            gizmos.sphere(Isometry3d::from_translation(p), 0.03, color);
+        }
     }
 }
 

@@ -54,7 +54,7 @@ pub fn draw_panel(
     egui::Window::new("tumble").default_pos([8.0, 8.0]).default_width(290.0).show(ctx, |ui| {
         egui::ScrollArea::vertical().max_height(660.0).show(ui, |ui| {
             let current = scenes.names.get(scenes.current).map_or("", |n| n.trim_end_matches(".scene.ron"));
-            egui::ComboBox::from_label("scene (keys 1–9, 0)").selected_text(current).show_ui(ui, |ui| {
+            egui::ComboBox::from_label("scene (keys 1–9, 0 for the first ten)").selected_text(current).show_ui(ui, |ui| {
                 for (i, name) in scenes.names.iter().enumerate() {
                     if ui.selectable_label(i == scenes.current, name.trim_end_matches(".scene.ron")).clicked() {
                         switch.write(SwitchScene(i));
@@ -141,6 +141,7 @@ pub fn draw_panel(
 
             ui.horizontal(|ui| {
                 ui.label("gizmos");
+                ui.checkbox(&mut debug.joints, "joints");
                 ui.checkbox(&mut debug.contacts, "contacts");
                 ui.checkbox(&mut debug.aabbs, "AABBs");
                 ui.checkbox(&mut debug.velocities, "velocities");
