@@ -9,9 +9,8 @@
 //! `cargo run --release --features study --example accuracy_study`
 
 use tumble::study::{
-    CONTACT_SCENARIOS, HORIZON, KNOB_VALUES, RATES, SUBSTEPS, double_pendulum_sweep,
-    fitted_order, iteration_sweep, substep_sweep, sweep, to_csv, write_double_pendulum_plot,
-    write_plots,
+    CONTACT_SCENARIOS, HORIZON, KNOB_VALUES, RATES, SUBSTEPS, double_pendulum_sweep, fitted_order,
+    iteration_sweep, substep_sweep, sweep, to_csv, write_double_pendulum_plot, write_plots,
 };
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -94,7 +93,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let cells: Vec<String> = subs
             .iter()
             .filter(|r| r.scenario == scenario)
-            .map(|r| format!("{:.1e} · {:.1e}", r.measure.energy_drift.abs(), r.measure.error_max))
+            .map(|r| {
+                format!(
+                    "{:.1e} · {:.1e}",
+                    r.measure.energy_drift.abs(),
+                    r.measure.error_max
+                )
+            })
             .collect();
         println!("| {scenario} | {} |", cells.join(" | "));
     }

@@ -9,7 +9,7 @@
 //!   the scene's contacts in.
 //!
 //! The scenes are the demo's own files and cover contacts, friction, restitution,
-//! sleeping and waking (a ball dropped onto the scene half-way through).
+//! joints, sleeping and waking (a ball dropped onto the scene half-way through).
 
 mod common;
 use bevy::prelude::*;
@@ -17,10 +17,12 @@ use common::*;
 use tumble::prelude::*;
 use tumble::scene::{SceneDesc, SceneEntity};
 
-const SCENES: [(&str, usize); 3] = [
+const SCENES: [(&str, usize); 4] = [
     ("1_spheres_in_a_box.scene.ron", 240),
     ("2_box_tower.scene.ron", 240),
     ("4_mixed_masses.scene.ron", 240),
+    // Joints among contacts.
+    ("15_ragdolls.scene.ron", 240),
 ];
 
 /// The scene's bodies' poses and velocities as raw bits, in spawn order.

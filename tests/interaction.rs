@@ -35,7 +35,11 @@ fn switching_scenes_replaces_every_scene_entity() {
         first.iter().all(|&e| app.world().get_entity(e).is_err()),
         "old bodies despawned"
     );
-    assert_eq!(scene_entities(&mut app).len(), 5 + 1);
+    assert_eq!(
+        scene_entities(&mut app).len(),
+        5 + 1 + 10,
+        "five balls, the ground, ten strings"
+    );
     assert_eq!(
         app.world().resource::<PhysicsWorld>().awake_bodies(),
         5,

@@ -236,3 +236,53 @@ fn a_joint_reports_its_load_and_breaks_at_its_break_force() {
     step(&mut app, 30);
     assert!(pos(&app, ball).y < y - 0.5, "the ball fell after the break");
 }
+
+#[test]
+fn a_ball_joints_cone_and_twist_limits_hold() {
+    // A 1 kg, 1 m bar hanging from a ball joint at its top, its cone 0.3 rad about the
+    // vertical: a sideways pull of 2·m·g at its centre would lean it to atan 2 = 63°
+    // free; a 5 N·m twist about the vertical would spin it, and its twist limits ±0.5 rad
+    // hold it.
+    let mut app = app();
+    let (m, l) = (1.0, 1.0);
+    let pivot = Vec3::new(0.0, 4.0, 0.0);
+    let bar = spawn(
+        &mut app,
+        (
+            RigidBody::Dynamic,
+            Collider::cuboid(0.05, l / 2.0, 0.05),
+            Mass(m),
+            Transform::from_translation(pivot - Vec3::Y * l / 2.0),
+        ),
+    );
+    spawn(
+        &mut app,
+        Joint::spherical(None, bar)
+            .with_local_anchors(pivot, Vec3::Y * l / 2.0)
+            .with_cone_limit(Vec3::NEG_Y, 0.3)
+            .with_twist_limits(-0.5, 0.5),
+    );
+    app.world_mut().entity_mut(bar).insert(ExternalForce {
+        force: Vec3::X * 2.0 * m * G,
+        torque: Vec3::Y * 5.0,
+    });
+    let (mut lean, mut twist) = (0.0f32, 0.0f32);
+    for _ in 0..180 {
+        step(&mut app, 1);
+        let q = rot(&app, bar);
+        lean = lean.max((q * Vec3::NEG_Y).angle_between(Vec3::NEG_Y));
+        // The twist: q = swing · twist, the twist about the bar's axis at rest (y).
+        let along = q.y;
+        twist = twist.max((2.0 * along.atan2(q.w)).abs());
+    }
+    assert!(lean > 0.25, "it leaned against the cone: {lean}");
+    assert!(
+        lean < 0.3 + 0.01,
+        "it leaned {lean} rad past the 0.3 rad cone"
+    );
+    assert!(twist > 0.4, "it twisted against the limit: {twist}");
+    assert!(
+        twist < 0.5 + 0.01,
+        "it twisted {twist} rad past the 0.5 rad limit"
+    );
+}

@@ -63,8 +63,16 @@ pub struct Joint {
 pub enum JointKind {
     /// No relative motion at all: a weld.
     Fixed,
-    /// The anchors held together; the bodies turn freely about them: a ball joint.
-    Spherical,
+    /// The anchors held together; the bodies turn about them: a ball joint, free or
+    /// limited (a shoulder, a hip).
+    Spherical {
+        /// The most body 2's axis may lean from body 1's, rad (the axis is
+        /// [`Joint::local_axis1`], and body 2's is where it was when the joint first
+        /// stepped).
+        cone: Option<f32>,
+        /// The lowest and highest twist about body 1's axis, rad.
+        twist: Option<(f32, f32)>,
+    },
     /// The anchors held together and the bodies turned only about the axis: a hinge.
     Revolute {
         /// The lowest and highest angle, rad (from the pose when the joint first stepped).
@@ -176,9 +184,33 @@ impl Joint {
         Self::new(body1, body2, JointKind::Fixed)
     }
 
-    /// A ball joint at the anchors.
+    /// A ball joint at the anchors, free (see [`with_cone_limit`](Self::with_cone_limit)
+    /// and [`with_twist_limits`](Self::with_twist_limits)).
     pub fn spherical(body1: impl Into<Option<Entity>>, body2: Entity) -> Self {
-        Self::new(body1, body2, JointKind::Spherical)
+        let kind = JointKind::Spherical {
+            cone: None,
+            twist: None,
+        };
+        Self::new(body1, body2, kind)
+    }
+
+    /// A ball joint's cone: body 2's axis leans at most `max_angle` rad from body 1's
+    /// axis (`local_axis1`, here set to `axis`). No effect on the other kinds.
+    pub fn with_cone_limit(mut self, axis: Vec3, max_angle: f32) -> Self {
+        if let JointKind::Spherical { cone, .. } = &mut self.kind {
+            *cone = Some(max_angle);
+            self.local_axis1 = axis;
+        }
+        self
+    }
+
+    /// A ball joint's twist about its axis, between `min` and `max` rad. No effect on the
+    /// other kinds.
+    pub fn with_twist_limits(mut self, min: f32, max: f32) -> Self {
+        if let JointKind::Spherical { twist, .. } = &mut self.kind {
+            *twist = Some((min, max));
+        }
+        self
     }
 
     /// A hinge about `axis` (body 1's frame) through the anchors.
@@ -253,8 +285,8 @@ impl Joint {
         self
     }
 
-    /// Angle limits of a revolute joint (rad) or offset limits of a prismatic or distance
-    /// joint (m). No effect on the other kinds.
+    /// Angle limits of a revolute joint (rad), offset limits of a prismatic or distance
+    /// joint (m), twist limits of a ball joint (rad). No effect on a weld.
     pub fn with_limits(mut self, min: f32, max: f32) -> Self {
         match &mut self.kind {
             JointKind::Revolute { limits, .. } | JointKind::Prismatic { limits, .. } => {
@@ -263,7 +295,8 @@ impl Joint {
             JointKind::Distance {
                 min: lo, max: hi, ..
             } => (*lo, *hi) = (min, max),
-            JointKind::Fixed | JointKind::Spherical => {}
+            JointKind::Spherical { twist, .. } => *twist = Some((min, max)),
+            JointKind::Fixed => {}
         }
         self
     }

@@ -36,9 +36,13 @@ pub struct JointDesc {
     /// A hinge's or slider's axis, body 1's frame. Default +Z.
     #[serde(default = "default_axis")]
     pub axis: Vec3,
-    /// A hinge's angle limits (rad) or a slider's offset limits (m).
+    /// A hinge's angle limits (rad), a slider's offset limits (m), a ball joint's twist
+    /// limits (rad).
     #[serde(default)]
     pub limits: Option<(f32, f32)>,
+    /// A ball joint's cone: the most body 2's axis leans from `axis`, rad.
+    #[serde(default)]
+    pub cone: Option<f32>,
     /// A motor: target speed (rad/s or m/s) and most torque or force (N·m or N).
     #[serde(default)]
     pub motor: Option<(f32, f32)>,
@@ -134,6 +138,9 @@ impl JointDesc {
         .with_local_anchors(self.anchor1, self.anchor2);
         if let Some((lo, hi)) = self.limits {
             joint = joint.with_limits(lo, hi);
+        }
+        if let Some(angle) = self.cone {
+            joint = joint.with_cone_limit(self.axis, angle);
         }
         if let Some((speed, force)) = self.motor {
             joint = joint.with_motor(speed, force);

@@ -7,8 +7,8 @@ mod pendulum;
 mod plots;
 mod scenarios;
 
-pub use plots::{write_double_pendulum_plot, write_plots};
 pub use pendulum::{HORIZON, PARTED, double_pendulum_divergence, pendulum_energy_series};
+pub use plots::{write_double_pendulum_plot, write_plots};
 pub use scenarios::{Measure, SCENARIOS, Scenario};
 
 use std::time::Instant;

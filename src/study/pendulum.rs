@@ -55,7 +55,10 @@ const RELEASE: f32 = std::f32::consts::FRAC_PI_3;
 fn single_run(config: Config) -> Vec<(f64, f64, f64)> {
     let pivot = Vec3::new(0.0, 2.0, 0.0);
     let mut app = headless_app(config);
-    let b = bob(&mut app, pivot + L * Vec3::new(RELEASE.sin(), -RELEASE.cos(), 0.0));
+    let b = bob(
+        &mut app,
+        pivot + L * Vec3::new(RELEASE.sin(), -RELEASE.cos(), 0.0),
+    );
     app.world_mut()
         .spawn(Joint::distance(None, b, L).with_local_anchors(pivot, Vec3::ZERO));
     let lowest = (pivot.y - L) as f64;
@@ -80,7 +83,10 @@ fn single_run(config: Config) -> Vec<(f64, f64, f64)> {
 
 /// The single pendulum's swing energy relative to the start's over 20 s: (t, E/E0).
 pub fn pendulum_energy_series(config: Config) -> Vec<(f64, f64)> {
-    single_run(config).into_iter().map(|(t, e, _)| (t, e)).collect()
+    single_run(config)
+        .into_iter()
+        .map(|(t, e, _)| (t, e))
+        .collect()
 }
 
 /// The single pendulum: period error (relative, against the exact period at 60°) and

@@ -68,7 +68,7 @@ fn draw_joints(
         let color = match j.kind {
             JointKind::Distance { .. } => Color::srgb(0.85, 0.85, 0.8),
             JointKind::Revolute { .. } | JointKind::Prismatic { .. } => Color::srgb(1.0, 0.6, 0.2),
-            JointKind::Fixed | JointKind::Spherical => Color::srgb(0.3, 0.8, 1.0),
+            JointKind::Fixed | JointKind::Spherical { .. } => Color::srgb(0.3, 0.8, 1.0),
         };
         gizmos.line(a, b, color);
         for p in [a, b] {

@@ -44,10 +44,16 @@ pub(crate) struct JointConstraint {
     pub offset: Vec3,
     /// The axis at the start of the step, world frame, unit (turns with A).
     pub axis: Vec3,
+    /// B's own axis (where A's lay in B at rest), world frame at the start of the step
+    /// (turns with B): a ball joint's cone is measured between the two.
+    pub axis_b: Vec3,
+    /// A ball joint's cone, rad: the most `axis_b` may lean from `axis`.
+    pub cone: Option<f32>,
     /// B's rotation error is `dq_b · rest · dq_a⁻¹` (identity when the bodies keep the
     /// relative pose the joint counts from).
     pub rest: Quat,
-    /// Revolute or prismatic limits (rad or m), or a distance joint's min and max (m).
+    /// Revolute, prismatic or ball-joint twist limits (rad or m), or a distance joint's
+    /// min and max (m).
     pub limits: Option<(f32, f32)>,
     /// Motor target speed (rad/s or m/s) and its most force (N·m or N).
     pub motor: Option<(f32, f32)>,
@@ -56,7 +62,8 @@ pub(crate) struct JointConstraint {
     /// Accumulated impulses, as in [`JointState`](crate::joint::JointForces).
     pub linear: Vec3,
     pub angular: Vec3,
-    /// Motor (or a distance joint's rigid or spring row), lower limit, upper limit.
+    /// Motor (or a distance joint's rigid or spring row, or a ball joint's cone), lower
+    /// limit, upper limit.
     pub axial: [f32; 3],
     /// The substep the impulses are per, s (0 before the first step).
     pub h: f32,
@@ -64,8 +71,10 @@ pub(crate) struct JointConstraint {
     /// the solve.
     pub force: Vec3,
     pub torque: Vec3,
-    /// The force it carried last step, N (what its stiffness is chosen for).
+    /// The force (N) and torque (N·m, world) it carried last step: what its stiffness is
+    /// chosen for.
     pub load: f32,
+    pub torque_load: Vec3,
     /// The length its allowed sag is a fraction of, m: its longest arm or its length.
     pub size: f32,
     /// Its soft-step coefficients this step (set by the solver).

@@ -122,7 +122,7 @@ pub fn prepare_joints(
         let axis = a.rot * joint.local_axis1.normalize();
         let (rows, limits, motor, spring) = match joint.kind {
             JointKind::Fixed => (JointRows::Fixed, None, None, None),
-            JointKind::Spherical => (JointRows::Spherical, None, None, None),
+            JointKind::Spherical { twist, .. } => (JointRows::Spherical, twist, None, None),
             JointKind::Revolute { limits, motor } => (JointRows::Revolute, limits, motor, None),
             JointKind::Prismatic { limits, motor } => (JointRows::Prismatic, limits, motor, None),
             JointKind::Distance { min, max, spring } => {
@@ -139,6 +139,12 @@ pub fn prepare_joints(
             rb: b.arm,
             offset: b.origin - a.origin,
             axis,
+            // Body 2's axis: where body 1's lay in it at rest.
+            axis_b: b.rot * (rest.inverse() * joint.local_axis1.normalize()),
+            cone: match joint.kind {
+                JointKind::Spherical { cone, .. } => cone,
+                _ => None,
+            },
             rest: b.rot * rest.inverse() * a.rot.inverse(),
             limits,
             motor: motor.map(|m| (m.target_speed, m.max_force)),
@@ -150,6 +156,7 @@ pub fn prepare_joints(
             force: Vec3::ZERO,
             torque: Vec3::ZERO,
             load: forces.force.length(),
+            torque_load: forces.torque,
             size: a
                 .arm
                 .length()
@@ -305,7 +312,17 @@ fn check(j: &Joint) -> Result<(), (&'static str, String)> {
                 .map_err(named)?;
             }
         }
-        JointKind::Fixed | JointKind::Spherical => {}
+        JointKind::Spherical { cone, twist } => {
+            if let Some(c) = cone
+                && !(c.is_finite() && (0.0..=std::f32::consts::PI).contains(&c))
+            {
+                return Err(("Joint.kind.cone", format!("{c}: must be within 0..=π rad")));
+            }
+            if let Some(t) = twist {
+                ordered("Joint.kind.twist", t, std::f32::consts::PI)?;
+            }
+        }
+        JointKind::Fixed => {}
     }
     if j.break_force.is_nan() || j.break_force <= 0.0 {
         return Err((

@@ -18,7 +18,7 @@ use crate::world::{ContactParams, JointConstraint, JointRows, SolverBody, body, 
 /// The frequency a joint would like and the one it needs, Hz.
 ///
 /// A soft joint is a stiff spring of k = m_eff·ω² across its rows: carrying a load T it
-/// opens by T/k. Light bodies holding a heavy one (a chain of 0.1 kg links under a 10 kg
+/// opens by T/k (and a turn under a torque likewise, by the inertia). Light bodies holding a heavy one (a chain of 0.1 kg links under a 10 kg
 /// ball: m_eff 0.05 kg, T 127 N) open by centimetres at the contacts' frequencies, so
 /// each joint asks for the frequency that holds its opening to `max_sag` of its size:
 /// ω ≥ √(T / (m_eff · max_sag · size)). That one is *needed* (it raises the substeps, as
@@ -31,11 +31,22 @@ pub fn joint_hertz(j: &JointConstraint, bodies: &[SolverBody], p: &ContactParams
     // masses alone when there is none.
     let n = j.offset.normalize_or(Vec3::Y);
     let k = linear_k(&a, &b, j.ra, j.rb, n);
-    if k <= 0.0 || j.load <= 0.0 {
-        return (base, 0.0);
-    }
-    let omega = (j.load * k / (p.max_sag * j.size.max(MIN_JOINT_SIZE))).sqrt();
-    let needed = omega / std::f32::consts::TAU;
+    let linear = if k > 0.0 && j.load > 0.0 {
+        (j.load * k / (p.max_sag * j.size.max(MIN_JOINT_SIZE))).sqrt()
+    } else {
+        0.0
+    };
+    // A torque T on a turn of inverse inertia k opens it by T·k/ω² rad; held to max_sag
+    // rad (a limit, a weld).
+    let t = j.torque_load.length();
+    let axis = j.torque_load / t.max(f32::MIN_POSITIVE);
+    let k = axis.dot((a.inv_inertia + b.inv_inertia) * axis);
+    let angular = if k > 0.0 && t > 0.0 {
+        (t * k / p.max_sag).sqrt()
+    } else {
+        0.0
+    };
+    let needed = linear.max(angular) / std::f32::consts::TAU;
     let needed = if needed.is_finite() { needed } else { 0.0 };
     (base.max(needed), needed)
 }
@@ -158,8 +169,10 @@ pub fn warm_start_joints(bodies: &mut [SolverBody], joints: &[JointConstraint]) 
             }
         }
         let mut l = j.angular;
-        if j.rows == JointRows::Revolute {
-            l += f.axis * axial;
+        match j.rows {
+            JointRows::Revolute => l += f.axis * axial,
+            JointRows::Spherical => l += spherical_torque(j, &b, f.axis),
+            _ => {}
         }
         apply_angular(&mut a, &mut b, l);
         store(bodies, j.a, a);
@@ -185,7 +198,10 @@ pub fn solve_joints(
                 solve_turns(j, &mut a, &mut b, soft, use_bias);
                 solve_point(j, &mut a, &mut b, &f, soft, use_bias);
             }
-            JointRows::Spherical => solve_point(j, &mut a, &mut b, &f, soft, use_bias),
+            JointRows::Spherical => {
+                solve_cone_twist(j, &mut a, &mut b, &f, h, soft, use_bias);
+                solve_point(j, &mut a, &mut b, &f, soft, use_bias);
+            }
             JointRows::Revolute => {
                 solve_hinge_axis(j, &mut a, &mut b, &f, h, soft, use_bias);
                 solve_hinge_turns(j, &mut a, &mut b, &f, soft, use_bias);
@@ -314,6 +330,59 @@ fn solve_hinge_axis(
     }
 }
 
+/// A ball joint's cone (B's axis within `cone` of A's) and twist limits (about A's axis).
+fn solve_cone_twist(
+    j: &mut JointConstraint,
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    f: &Now,
+    h: f32,
+    soft: &Softness,
+    use_bias: bool,
+) {
+    let k = a.inv_inertia + b.inv_inertia;
+    if let Some(max) = j.cone {
+        let axis_b = b.dq * j.axis_b;
+        let (lean, n) = cone_lean(f.axis, axis_b);
+        let mass = inv(n.dot(k * n));
+        // Leaning further turns B about +n: the row pushes back about −n.
+        let (bias, mass_scale, impulse_scale) = one_sided(max - lean, 1.0 / h, soft, use_bias);
+        let cdot = -n.dot(b.w - a.w);
+        let old = j.axial[0];
+        let l = -mass * mass_scale * (cdot + bias) - impulse_scale * old;
+        j.axial[0] = (old + l).max(0.0);
+        apply_angular(a, b, n * -(j.axial[0] - old));
+    }
+    if let Some((lo, hi)) = j.limits {
+        let axis = f.axis;
+        let mass = inv(axis.dot(k * axis));
+        let (q, _) = rotation_error(j, a, b);
+        let angle = twist_angle(q, axis);
+        for (slot, room, sign) in [(1, angle - lo, 1.0), (2, hi - angle, -1.0)] {
+            let (bias, mass_scale, impulse_scale) = one_sided(room, 1.0 / h, soft, use_bias);
+            let cdot = sign * axis.dot(b.w - a.w);
+            let old = j.axial[slot];
+            let l = -mass * mass_scale * (cdot + bias) - impulse_scale * old;
+            j.axial[slot] = (old + l).max(0.0);
+            apply_angular(a, b, axis * (sign * (j.axial[slot] - old)));
+        }
+    }
+}
+
+/// How far unit `b` leans from unit `a`, rad, and the unit axis it leans about (any
+/// perpendicular of `a` when they are aligned).
+fn cone_lean(a: Vec3, b: Vec3) -> (f32, Vec3) {
+    let cross = a.cross(b);
+    let sin = cross.length();
+    let lean = sin.atan2(a.dot(b));
+    let n = if sin > 1e-6 {
+        cross / sin
+    } else {
+        a.any_orthonormal_vector()
+    };
+    (lean, n)
+}
+
 /// A slider's motor and offset limits, along its axis.
 fn solve_slide_axis(
     j: &mut JointConstraint,
@@ -431,6 +500,15 @@ pub fn store_joint_forces(joints: &mut [JointConstraint], bodies: &[SolverBody],
     }
 }
 
+/// A ball joint's accumulated cone and twist impulses as one angular impulse on B.
+fn spherical_torque(j: &JointConstraint, b: &SolverBody, axis: Vec3) -> Vec3 {
+    let twist = axis * (j.axial[1] - j.axial[2]);
+    match j.cone {
+        Some(_) => twist - cone_lean(axis, b.dq * j.axis_b).1 * j.axial[0],
+        None => twist,
+    }
+}
+
 fn joint_force(j: &JointConstraint, bodies: &[SolverBody], h: f32) -> (Vec3, Vec3) {
     let (a, b) = (body(bodies, j.a), body(bodies, j.b));
     let f = now(j, &a, &b);
@@ -438,9 +516,10 @@ fn joint_force(j: &JointConstraint, bodies: &[SolverBody], h: f32) -> (Vec3, Vec
     let (mut force, mut torque) = (j.linear, j.angular);
     match j.rows {
         JointRows::Revolute => torque += f.axis * axial,
+        JointRows::Spherical => torque += spherical_torque(j, &b, f.axis),
         JointRows::Prismatic => force += f.axis * axial,
         JointRows::Distance => force += f.d.normalize_or(f.axis) * axial,
-        JointRows::Fixed | JointRows::Spherical => {}
+        JointRows::Fixed => {}
     }
     (force / h, torque / h)
 }
