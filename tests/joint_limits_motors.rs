@@ -286,3 +286,98 @@ fn a_ball_joints_cone_and_twist_limits_hold() {
         "it twisted {twist} rad past the 0.5 rad limit"
     );
 }
+
+#[test]
+fn a_hinge_motor_spins_up_at_its_torque_and_holds_its_speed() {
+    // A 2 kg disc (cylinder r 0.5 m, I = m·r²/2 = 0.25 kg·m² about its axis) on a hinge
+    // to the world, no gravity; motor 3 rad/s with at most 0.5 N·m: it spins up at
+    // τ/I = 2 rad/s² for 1.5 s, then holds 3 rad/s.
+    let mut app = app_without_gravity();
+    let wheel = spawn(
+        &mut app,
+        (
+            RigidBody::Dynamic,
+            Collider::cylinder(0.5, 0.05),
+            Mass(2.0),
+            Transform::default(),
+        ),
+    );
+    spawn(
+        &mut app,
+        Joint::revolute(None, wheel, Vec3::Y).with_motor(3.0, 0.5),
+    );
+    step(&mut app, 30);
+    assert_near(
+        vel(&app, wheel).angular.y,
+        1.0,
+        0.01,
+        "spin after 0.5 s, rad/s",
+    );
+    step(&mut app, 90);
+    assert_near(
+        vel(&app, wheel).angular.y,
+        3.0,
+        1e-3,
+        "spin after 2 s, rad/s",
+    );
+    let w = vel(&app, wheel).angular;
+    assert!(
+        w.x.abs() < 1e-4 && w.z.abs() < 1e-4,
+        "off the hinge axis: {w}"
+    );
+}
+
+#[test]
+fn a_spring_joint_has_its_stiffness_and_frequency() {
+    // A 1 kg ball on a 2 Hz spring of rest length 1 m below a world anchor. Undamped and
+    // let go at the rest length, it bobs with the spring's period, 0.5 s; damped
+    // (ζ = 0.7) it settles g/ω² = 6.2 cm below the rest length (k = m·ω²). (The soft
+    // step integrates the spring implicitly, which damps it: undamped, its first swing
+    // fell 14 % short of 2·g/ω².)
+    let omega = std::f32::consts::TAU * 2.0;
+    let anchor = Vec3::new(0.0, 5.0, 0.0);
+    let setup = |zeta: f32| {
+        let mut app = app();
+        let ball = spawn(
+            &mut app,
+            (
+                RigidBody::Dynamic,
+                Collider::sphere(0.1),
+                Mass(1.0),
+                Transform::from_translation(anchor - Vec3::Y),
+            ),
+        );
+        spawn(
+            &mut app,
+            Joint::spring(None, ball, 1.0, 2.0, zeta).with_local_anchors(anchor, Vec3::ZERO),
+        );
+        (app, ball)
+    };
+    let (mut app, ball) = setup(0.0);
+    let mut lows = Vec::new();
+    let (mut before, mut last) = (pos(&app, ball).y, pos(&app, ball).y);
+    for k in 1..=150 {
+        step(&mut app, 1);
+        let y = pos(&app, ball).y;
+        if k > 1 && last < before && last <= y {
+            // A lowest point at step k − 1, refined by the parabola through three steps.
+            let (a, b, c) = (before, last, y);
+            let shift = 0.5 * (a - c) / (a - 2.0 * b + c);
+            lows.push((k as f32 - 1.0 + shift) * H);
+        }
+        (before, last) = (last, y);
+    }
+    assert!(lows.len() >= 4, "{lows:?}");
+    let period = (lows[lows.len() - 1] - lows[0]) / (lows.len() - 1) as f32;
+    assert_near(period, 0.5, 0.01 * 0.5, "period, s");
+
+    let (mut app, ball) = setup(0.7);
+    step(&mut app, 300);
+    let sag = anchor.y - 1.0 - pos(&app, ball).y;
+    assert_near(
+        sag,
+        G / (omega * omega),
+        0.01 * G / (omega * omega),
+        "static stretch, m",
+    );
+}
