@@ -13,54 +13,7 @@
 use bevy::prelude::*;
 
 use crate::math::Softness;
-use crate::world::{ContactParams, JointConstraint, JointRows, SolverBody, body, store};
-
-/// The frequency a joint would like and the one it needs, Hz.
-///
-/// A soft joint is a stiff spring of k = m_eff·ω² across its rows: carrying a load T it
-/// opens by T/k (and a turn under a torque likewise, by the inertia). Light bodies holding a heavy one (a chain of 0.1 kg links under a 10 kg
-/// ball: m_eff 0.05 kg, T 127 N) open by centimetres at the contacts' frequencies, so
-/// each joint asks for the frequency that holds its opening to `max_sag` of its size:
-/// ω ≥ √(T / (m_eff · max_sag · size)). That one is *needed* (it raises the substeps, as
-/// a heavy stack's contacts do); otherwise a joint wants twice the contact frequency
-/// (Box2D v3's choice) or an eighth of the substep rate, whichever is higher: at a fixed
-/// 60 Hz, finer substeps let the joint's damping work longer on the compliance it leaves
-/// (a pendulum's energy drift grew from −9.9e-5 at 16 substeps to −8.0e-4 at 64; now it
-/// falls, `tests/joint_pendulum.rs`). Both are capped by the caller at a quarter of the
-/// substep rate.
-pub fn joint_hertz(j: &JointConstraint, bodies: &[SolverBody], p: &ContactParams) -> (f32, f32) {
-    let (a, b) = (body(bodies, j.a), body(bodies, j.b));
-    let base = (2.0 * p.hertz).max(0.125 / p.h);
-    // The lightest direction: along the offset (where a chain pulls), by the linear
-    // masses alone when there is none.
-    let n = j.offset.normalize_or(Vec3::Y);
-    let k = linear_k(&a, &b, j.ra, j.rb, n);
-    let linear = if k > 0.0 && j.load > 0.0 {
-        (j.load * k / (p.max_sag * j.size.max(MIN_JOINT_SIZE))).sqrt()
-    } else {
-        0.0
-    };
-    // A torque T on a turn of inverse inertia k opens it by T·k/ω² rad; held to max_sag
-    // rad (a limit, a weld).
-    let t = j.torque_load.length();
-    let axis = j.torque_load / t.max(f32::MIN_POSITIVE);
-    let k = axis.dot((a.inv_inertia + b.inv_inertia) * axis);
-    let angular = if k > 0.0 && t > 0.0 {
-        (t * k / p.max_sag).sqrt()
-    } else {
-        0.0
-    };
-    let needed = linear.max(angular) / std::f32::consts::TAU;
-    let needed = if needed.is_finite() { needed } else { 0.0 };
-    (base.max(needed), needed)
-}
-
-/// The least size a joint's sag is measured against, m (a joint at both centres of mass
-/// has no arms).
-pub const MIN_JOINT_SIZE: f32 = 0.05;
-
-/// The damping ratio of the joints' position correction (Box2D v3's default).
-pub const JOINT_DAMPING_RATIO: f32 = 2.0;
+use crate::world::{JointConstraint, JointRows, SolverBody, body, store};
 
 /// The joint's geometry now: anchors from the centres of mass, the offset from anchor A
 /// to anchor B (the point error), and the axis, all world frame.
@@ -110,7 +63,7 @@ fn point_velocity(a: &SolverBody, b: &SolverBody, arm_a: Vec3, arm_b: Vec3) -> V
 }
 
 /// The inverse effective mass of a linear row along unit `n`.
-fn linear_k(a: &SolverBody, b: &SolverBody, arm_a: Vec3, arm_b: Vec3, n: Vec3) -> f32 {
+pub(super) fn linear_k(a: &SolverBody, b: &SolverBody, arm_a: Vec3, arm_b: Vec3, n: Vec3) -> f32 {
     let (ca, cb) = (arm_a.cross(n), arm_b.cross(n));
     a.inv_mass + b.inv_mass + ca.dot(a.inv_inertia * ca) + cb.dot(b.inv_inertia * cb)
 }

@@ -21,9 +21,8 @@ use crate::world::{
 pub use contact::{prepare_constraints, refresh_rows, sum_impulses};
 pub use continuous::sweep_against_fixed;
 pub use iterate::{apply_restitution, solve, stop_approach, warm_start};
-use joint::{
-    JOINT_DAMPING_RATIO, joint_hertz, solve_joints, store_joint_forces, warm_start_joints,
-};
+use joint::{solve_joints, store_joint_forces, warm_start_joints};
+use stiffness::{JOINT_DAMPING_RATIO, joint_hertz};
 pub use stiffness::{pair_size, substeps_for, wanted_hertz};
 
 /// The solver's stages in execution order. `PrepareContacts` runs once per step; the

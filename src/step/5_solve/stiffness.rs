@@ -1,4 +1,4 @@
-//! How stiff each contact is, and how many substeps that takes.
+//! How stiff each contact and joint is, and how many substeps that takes.
 //!
 //! A soft contact is a spring-damper tuned to the pair's effective mass m_eff — about the
 //! lighter body's mass. Resting under a load of mass M it sinks by r·g/ω² (r = M/m_eff,
@@ -20,7 +20,10 @@ use std::f32::consts::TAU;
 use crate::collider::Shape;
 
 use crate::math::Softness;
-use crate::world::ContactParams;
+use bevy::math::Vec3;
+
+use super::joint::linear_k;
+use crate::world::{ContactParams, JointConstraint, SolverBody, body};
 
 /// The most load, in multiples of the lighter body, that the sag rule reads from a
 /// contact's impulses (its own mass ratio counts in full). A five-high stack of
@@ -113,6 +116,53 @@ pub fn substeps_for(hertz: f32, dt: f32, min: u32, max: u32) -> u32 {
     let wanted = (4.0 * hertz * dt).ceil() as u32;
     wanted.clamp(min, max.max(min))
 }
+
+/// The frequency a joint would like and the one it needs, Hz.
+///
+/// A soft joint is a stiff spring of k = m_eff·ω² across its rows: carrying a load T it
+/// opens by T/k (and a turn under a torque likewise, by the inertia). Light bodies holding a heavy one (a chain of 0.1 kg links under a 10 kg
+/// ball: m_eff 0.05 kg, T 127 N) open by centimetres at the contacts' frequencies, so
+/// each joint asks for the frequency that holds its opening to `max_sag` of its size:
+/// ω ≥ √(T / (m_eff · max_sag · size)). That one is *needed* (it raises the substeps, as
+/// a heavy stack's contacts do); otherwise a joint wants twice the contact frequency
+/// (Box2D v3's choice) or an eighth of the substep rate, whichever is higher: at a fixed
+/// 60 Hz, finer substeps let the joint's damping work longer on the compliance it leaves
+/// (a pendulum's energy drift grew from −9.9e-5 at 16 substeps to −8.0e-4 at 64; now it
+/// falls, `tests/joint_pendulum.rs`). Both are capped by the caller at a quarter of the
+/// substep rate.
+pub fn joint_hertz(j: &JointConstraint, bodies: &[SolverBody], p: &ContactParams) -> (f32, f32) {
+    let (a, b) = (body(bodies, j.a), body(bodies, j.b));
+    let base = (2.0 * p.hertz).max(0.125 / p.h);
+    // The lightest direction: along the offset (where a chain pulls), by the linear
+    // masses alone when there is none.
+    let n = j.offset.normalize_or(Vec3::Y);
+    let k = linear_k(&a, &b, j.ra, j.rb, n);
+    let linear = if k > 0.0 && j.load > 0.0 {
+        (j.load * k / (p.max_sag * j.size.max(MIN_JOINT_SIZE))).sqrt()
+    } else {
+        0.0
+    };
+    // A torque T on a turn of inverse inertia k opens it by T·k/ω² rad; held to max_sag
+    // rad (a limit, a weld).
+    let t = j.torque_load.length();
+    let axis = j.torque_load / t.max(f32::MIN_POSITIVE);
+    let k = axis.dot((a.inv_inertia + b.inv_inertia) * axis);
+    let angular = if k > 0.0 && t > 0.0 {
+        (t * k / p.max_sag).sqrt()
+    } else {
+        0.0
+    };
+    let needed = linear.max(angular) / std::f32::consts::TAU;
+    let needed = if needed.is_finite() { needed } else { 0.0 };
+    (base.max(needed), needed)
+}
+
+/// The least size a joint's sag is measured against, m (a joint at both centres of mass
+/// has no arms).
+pub const MIN_JOINT_SIZE: f32 = 0.05;
+
+/// The damping ratio of the joints' position correction (Box2D v3's default).
+pub const JOINT_DAMPING_RATIO: f32 = 2.0;
 
 #[cfg(test)]
 mod tests {
