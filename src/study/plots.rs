@@ -127,20 +127,31 @@ fn work_precision(rows: &[&Row], unit: &str, path: &Path) -> Res {
                 .map(|r| (r.cost, r.measure.error_max))
                 .collect();
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let c = color(integrator);
-            let style = if substeps == 1 {
-                c.stroke_width(2)
-            } else {
-                c.mix(0.5).stroke_width(2)
-            };
-            chart
-                .draw_series(LineSeries::new(pts.clone(), style))?
-                .label(format!("{integrator:?}, {substeps} substep(s)"))
-                .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], style));
-            chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
+            draw_family(&mut chart, integrator, substeps, pts)?;
         }
     }
     finish(&mut chart, &root)
+}
+
+/// One integrator × substeps family as a line with dots, labelled (4 substeps paler).
+fn draw_family(
+    chart: &mut LogLog<'_, '_>,
+    integrator: Integrator,
+    substeps: u32,
+    pts: Vec<(f64, f64)>,
+) -> Res {
+    let c = color(integrator);
+    let style = if substeps == 1 {
+        c.stroke_width(2)
+    } else {
+        c.mix(0.5).stroke_width(2)
+    };
+    chart
+        .draw_series(LineSeries::new(pts.clone(), style))?
+        .label(format!("{integrator:?}, {substeps} substep(s)"))
+        .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], style));
+    chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
+    Ok(())
 }
 
 fn convergence(rows: &[Row], path: &Path) -> Res {
@@ -342,17 +353,7 @@ pub fn write_double_pendulum_plot(points: &[(Config, f64)], path: &Path) -> Res 
                 .filter(|p| p.0.integrator == integrator && p.0.substeps == substeps)
                 .map(|p| (1.0 / p.0.hz, p.1))
                 .collect();
-            let c = color(integrator);
-            let style = if substeps == 1 {
-                c.stroke_width(2)
-            } else {
-                c.mix(0.5).stroke_width(2)
-            };
-            chart
-                .draw_series(LineSeries::new(pts.clone(), style))?
-                .label(format!("{integrator:?}, {substeps} substep(s)"))
-                .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], style));
-            chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
+            draw_family(&mut chart, integrator, substeps, pts)?;
         }
     }
     finish(&mut chart, &root)

@@ -251,6 +251,39 @@ fn solve_hinge_turns(
     apply_angular(a, b, t1 * l.x + t2 * l.y);
 }
 
+/// One axis's motor and limits (Gauss–Seidel rows): `value` the angle (rad) or offset
+/// (m) now, `mass` the axis's effective mass, `speed` its relative speed and `push` an
+/// impulse along it. Motor in `axial[0]`, lower and upper limits in `axial[1]`, `[2]`.
+#[allow(clippy::too_many_arguments)]
+fn solve_axial(
+    j: &mut JointConstraint,
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    (value, mass, h): (f32, f32, f32),
+    soft: &Softness,
+    use_bias: bool,
+    speed: impl Fn(&SolverBody, &SolverBody) -> f32,
+    mut push: impl FnMut(&mut SolverBody, &mut SolverBody, f32),
+) {
+    if let Some((target, max_force)) = j.motor {
+        let cdot = speed(a, b) - target;
+        let max = max_force * h;
+        let old = j.axial[0];
+        j.axial[0] = (old - mass * cdot).clamp(-max, max);
+        push(a, b, j.axial[0] - old);
+    }
+    if let Some((lo, hi)) = j.limits {
+        for (slot, room, sign) in [(1, value - lo, 1.0), (2, hi - value, -1.0)] {
+            let (bias, mass_scale, impulse_scale) = one_sided(room, 1.0 / h, soft, use_bias);
+            let cdot = sign * speed(a, b);
+            let old = j.axial[slot];
+            let l = -mass * mass_scale * (cdot + bias) - impulse_scale * old;
+            j.axial[slot] = (old + l).max(0.0);
+            push(a, b, sign * (j.axial[slot] - old));
+        }
+    }
+}
+
 /// A hinge's motor and angle limits, about its axis.
 fn solve_hinge_axis(
     j: &mut JointConstraint,
@@ -264,27 +297,25 @@ fn solve_hinge_axis(
     if j.motor.is_none() && j.limits.is_none() {
         return;
     }
-    let axis = f.axis;
+    solve_turn_axis(j, a, b, f.axis, h, soft, use_bias);
+}
+
+/// Motor and limits about `axis` (a hinge's, a ball joint's twist).
+fn solve_turn_axis(
+    j: &mut JointConstraint,
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    axis: Vec3,
+    h: f32,
+    soft: &Softness,
+    use_bias: bool,
+) {
     let mass = inv(axis.dot((a.inv_inertia + b.inv_inertia) * axis));
-    if let Some((speed, max_force)) = j.motor {
-        let cdot = axis.dot(b.w - a.w) - speed;
-        let max = max_force * h;
-        let old = j.axial[0];
-        j.axial[0] = (old - mass * cdot).clamp(-max, max);
-        apply_angular(a, b, axis * (j.axial[0] - old));
-    }
-    if let Some((lo, hi)) = j.limits {
-        let (q, _) = rotation_error(j, a, b);
-        let angle = twist_angle(q, axis);
-        for (slot, room, sign) in [(1, angle - lo, 1.0), (2, hi - angle, -1.0)] {
-            let (bias, mass_scale, impulse_scale) = one_sided(room, 1.0 / h, soft, use_bias);
-            let cdot = sign * axis.dot(b.w - a.w);
-            let old = j.axial[slot];
-            let l = -mass * mass_scale * (cdot + bias) - impulse_scale * old;
-            j.axial[slot] = (old + l).max(0.0);
-            apply_angular(a, b, axis * (sign * (j.axial[slot] - old)));
-        }
-    }
+    let (q, _) = rotation_error(j, a, b);
+    let angle = twist_angle(q, axis);
+    let speed = |a: &SolverBody, b: &SolverBody| axis.dot(b.w - a.w);
+    let push = |a: &mut SolverBody, b: &mut SolverBody, l: f32| apply_angular(a, b, axis * l);
+    solve_axial(j, a, b, (angle, mass, h), soft, use_bias, speed, push);
 }
 
 /// A ball joint's cone (B's axis within `cone` of A's) and twist limits (about A's axis).
@@ -297,8 +328,8 @@ fn solve_cone_twist(
     soft: &Softness,
     use_bias: bool,
 ) {
-    let k = a.inv_inertia + b.inv_inertia;
     if let Some(max) = j.cone {
+        let k = a.inv_inertia + b.inv_inertia;
         let axis_b = b.dq * j.axis_b;
         let (lean, n) = cone_lean(f.axis, axis_b);
         let mass = inv(n.dot(k * n));
@@ -310,19 +341,8 @@ fn solve_cone_twist(
         j.axial[0] = (old + l).max(0.0);
         apply_angular(a, b, n * -(j.axial[0] - old));
     }
-    if let Some((lo, hi)) = j.limits {
-        let axis = f.axis;
-        let mass = inv(axis.dot(k * axis));
-        let (q, _) = rotation_error(j, a, b);
-        let angle = twist_angle(q, axis);
-        for (slot, room, sign) in [(1, angle - lo, 1.0), (2, hi - angle, -1.0)] {
-            let (bias, mass_scale, impulse_scale) = one_sided(room, 1.0 / h, soft, use_bias);
-            let cdot = sign * axis.dot(b.w - a.w);
-            let old = j.axial[slot];
-            let l = -mass * mass_scale * (cdot + bias) - impulse_scale * old;
-            j.axial[slot] = (old + l).max(0.0);
-            apply_angular(a, b, axis * (sign * (j.axial[slot] - old)));
-        }
+    if j.limits.is_some() {
+        solve_turn_axis(j, a, b, f.axis, h, soft, use_bias);
     }
 }
 
@@ -353,26 +373,14 @@ fn solve_slide_axis(
     if j.motor.is_none() && j.limits.is_none() {
         return;
     }
-    let (axis, arm_a) = (f.axis, f.ra + f.d);
-    let mass = inv(linear_k(a, b, arm_a, f.rb, axis));
-    if let Some((speed, max_force)) = j.motor {
-        let cdot = axis.dot(point_velocity(a, b, arm_a, f.rb)) - speed;
-        let max = max_force * h;
-        let old = j.axial[0];
-        j.axial[0] = (old - mass * cdot).clamp(-max, max);
-        apply_linear(a, b, arm_a, f.rb, axis * (j.axial[0] - old));
-    }
-    if let Some((lo, hi)) = j.limits {
-        let offset = axis.dot(f.d);
-        for (slot, room, sign) in [(1, offset - lo, 1.0), (2, hi - offset, -1.0)] {
-            let (bias, mass_scale, impulse_scale) = one_sided(room, 1.0 / h, soft, use_bias);
-            let cdot = sign * axis.dot(point_velocity(a, b, arm_a, f.rb));
-            let old = j.axial[slot];
-            let l = -mass * mass_scale * (cdot + bias) - impulse_scale * old;
-            j.axial[slot] = (old + l).max(0.0);
-            apply_linear(a, b, arm_a, f.rb, axis * (sign * (j.axial[slot] - old)));
-        }
-    }
+    let (axis, arm_a, rb) = (f.axis, f.ra + f.d, f.rb);
+    let mass = inv(linear_k(a, b, arm_a, rb, axis));
+    let speed = |a: &SolverBody, b: &SolverBody| axis.dot(point_velocity(a, b, arm_a, rb));
+    let push = |a: &mut SolverBody, b: &mut SolverBody, l: f32| {
+        apply_linear(a, b, arm_a, rb, axis * l);
+    };
+    let offset = axis.dot(f.d);
+    solve_axial(j, a, b, (offset, mass, h), soft, use_bias, speed, push);
 }
 
 /// A slider: no offset across its axis (a 2×2 block). A's arm reaches B's anchor.
