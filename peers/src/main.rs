@@ -6,16 +6,20 @@
 //! end) so that a fast engine is not fast because it did less.
 //!
 //! Each engine runs at its own defaults (tumble 4 substeps; avian 6 substeps; rapier 4
-//! solver iterations = substeps, one step) with sleeping off everywhere and a single
-//! thread everywhere (no `parallel` features).
+//! solver iterations = substeps, one step) with sleeping off everywhere. Threads: Bevy's
+//! compute pool pinned by `--threads N` (default 1, the calling thread alone); avian uses
+//! it, tumble does not yet, and bevy_rapier3d's `parallel` feature is off by default.
+//! The scenes: the demo's spheres, tower, pyramid and rain, and the three big ones in
+//! `peers/scenes/` (a 5,050-cube flat pyramid, 100 small pyramids, a 4,096-ball pit).
 //!
-//! `cargo run --release -p tumble-peers [-- <scene filter>]`
+//! `cargo run --release -p tumble-peers [-- <scene filter>] [--threads N]`
 
 mod avian;
 mod rapier;
 
 use std::time::Instant;
 
+use bevy::app::{TaskPoolOptions, TaskPoolThreadAssignmentPolicy};
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use tumble::scene::SceneDesc;
@@ -41,10 +45,29 @@ pub fn start(app: &mut App) {
     app.update();
 }
 
-/// A headless app that runs exactly one 60 Hz fixed step per update.
+/// Threads the compute pool may use (`--threads N`; default 1): N − 1 pool threads and
+/// the thread that calls it.
+static THREADS: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
+
+/// A headless app that runs exactly one 60 Hz fixed step per update, its compute pool
+/// pinned to [`THREADS`] (the pools are global: the first app sets them for the run).
 pub fn headless_app() -> App {
+    let threads = *THREADS.get().unwrap_or(&1);
+    let compute = TaskPoolThreadAssignmentPolicy {
+        min_threads: threads - 1,
+        max_threads: threads - 1,
+        percent: 1.0,
+        on_thread_spawn: None,
+        on_thread_destroy: None,
+    };
+    let pools = TaskPoolPlugin {
+        task_pool_options: TaskPoolOptions {
+            compute,
+            ..default()
+        },
+    };
     let mut app = App::new();
-    app.add_plugins((MinimalPlugins, TransformPlugin))
+    app.add_plugins((MinimalPlugins.set(pools), TransformPlugin))
         .insert_resource(Time::<Fixed>::from_hz(60.0))
         .insert_resource(TimeUpdateStrategy::FixedTimesteps(1));
     app
@@ -105,7 +128,7 @@ fn median(v: &mut [f64]) -> f64 {
 }
 
 fn compare(file: &str) {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let scene = SceneDesc::load(dir.join(file)).expect("scene file");
     let mut runs = [
         Run::new("tumble", tumble_app(&scene)),
@@ -129,10 +152,11 @@ fn compare(file: &str) {
     }
     let steps = WARM_UP + ROUNDS * STEPS + 1;
     println!(
-        "\n### {} ({} bodies, {} steps)\n\n| engine | ms / step | × tumble | mean drop m | fastest m/s |\n|---|---:|---:|---:|---:|",
+        "\n### {} ({} bodies, {} steps, {} thread(s))\n\n| engine | ms / step | × tumble | mean drop m | fastest m/s |\n|---|---:|---:|---:|---:|",
         scene.name,
         runs[0].bodies.len(),
-        steps
+        steps,
+        THREADS.get().unwrap_or(&1)
     );
     let base = median(&mut runs[0].samples.clone());
     for run in runs.iter_mut() {
@@ -147,15 +171,28 @@ fn compare(file: &str) {
 }
 
 fn main() {
-    let filters: Vec<String> = std::env::args()
-        .skip(1)
-        .filter(|a| !a.starts_with("--"))
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let threads = args
+        .iter()
+        .position(|a| a == "--threads")
+        .and_then(|i| args.get(i + 1))
+        .map(|n| n.parse::<usize>().expect("--threads takes a count").max(1))
+        .unwrap_or(1);
+    THREADS.set(threads).expect("set once");
+    let filters: Vec<String> = args
+        .iter()
+        .enumerate()
+        .filter(|(i, a)| !a.starts_with("--") && !(*i > 0 && args[i - 1] == "--threads"))
+        .map(|(_, a)| a.clone())
         .collect();
     for file in [
-        "1_spheres_in_a_box.scene.ron",
-        "2_box_tower.scene.ron",
-        "3_pyramid.scene.ron",
-        "9_rain.scene.ron",
+        "../assets/scenes/1_spheres_in_a_box.scene.ron",
+        "../assets/scenes/2_box_tower.scene.ron",
+        "../assets/scenes/3_pyramid.scene.ron",
+        "../assets/scenes/9_rain.scene.ron",
+        "scenes/large_pyramid.scene.ron",
+        "scenes/many_pyramids.scene.ron",
+        "scenes/ball_pit.scene.ron",
     ] {
         if filters.is_empty() || filters.iter().any(|f| file.contains(f.as_str())) {
             compare(file);
