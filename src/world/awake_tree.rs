@@ -17,6 +17,9 @@ use bevy::prelude::*;
 use parry3d::bounding_volume::Aabb;
 use parry3d::partitioning::{Bvh, BvhBuildStrategy, BvhWorkspace, TraversalAction};
 
+/// The least number of leaves for which the tree is re-optimised as it is refitted.
+pub(crate) const OPTIMIZE_FROM: usize = 256;
+
 /// The tree over the awake colliders and its scratch.
 #[derive(Default)]
 pub(crate) struct AwakeTree {
@@ -65,7 +68,10 @@ impl AwakeTree {
         pairs.clear();
         let refit = n == self.leaves;
         self.fit(n, aabb);
-        if refit {
+        // A small tree's shape matters little, and parry's incremental optimisation
+        // rebuilds parts of it each step: for 35 bouncing balls it was a third of the
+        // broad phase.
+        if refit && n >= OPTIMIZE_FROM {
             self.bvh.optimize_incremental(&mut self.workspace);
         }
         let mut full = false;
