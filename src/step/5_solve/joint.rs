@@ -297,22 +297,25 @@ fn solve_hinge_axis(
     if j.motor.is_none() && j.limits.is_none() {
         return;
     }
-    solve_turn_axis(j, a, b, f.axis, h, soft, use_bias);
+    solve_turn_axis(j, a, b, (f.axis, f.axis), h, soft, use_bias);
 }
 
-/// Motor and limits about `axis` (a hinge's, a ball joint's twist).
+/// Motor and limits of the turn about `axis` (a hinge's, a ball joint's twist), its rows
+/// along `row` (the axis itself for a hinge; for a twist, midway between the two bodies'
+/// axes, where a swing does not move the twist).
 fn solve_turn_axis(
     j: &mut JointConstraint,
     a: &mut SolverBody,
     b: &mut SolverBody,
-    axis: Vec3,
+    (axis, row): (Vec3, Vec3),
     h: f32,
     soft: &Softness,
     use_bias: bool,
 ) {
-    let mass = inv(axis.dot((a.inv_inertia + b.inv_inertia) * axis));
     let (q, _) = rotation_error(j, a, b);
     let angle = twist_angle(q, axis);
+    let axis = row;
+    let mass = inv(axis.dot((a.inv_inertia + b.inv_inertia) * axis));
     let speed = |a: &SolverBody, b: &SolverBody| axis.dot(b.w - a.w);
     let push = |a: &mut SolverBody, b: &mut SolverBody, l: f32| apply_angular(a, b, axis * l);
     solve_axial(j, a, b, (angle, mass, h), soft, use_bias, speed, push);
@@ -342,7 +345,8 @@ fn solve_cone_twist(
         apply_angular(a, b, n * -(j.axial[0] - old));
     }
     if j.limits.is_some() {
-        solve_turn_axis(j, a, b, f.axis, h, soft, use_bias);
+        let mid = (f.axis + b.dq * j.axis_b).normalize_or(f.axis);
+        solve_turn_axis(j, a, b, (f.axis, mid), h, soft, use_bias);
     }
 }
 
@@ -466,10 +470,12 @@ pub fn store_joint_forces(joints: &mut [JointConstraint], bodies: &[SolverBody],
 }
 
 /// A ball joint's accumulated cone and twist impulses as one angular impulse on B.
+/// The twist's rows lie midway between the two axes (see [`solve_turn_axis`]).
 fn spherical_torque(j: &JointConstraint, b: &SolverBody, axis: Vec3) -> Vec3 {
-    let twist = axis * (j.axial[1] - j.axial[2]);
+    let axis_b = b.dq * j.axis_b;
+    let twist = (axis + axis_b).normalize_or(axis) * (j.axial[1] - j.axial[2]);
     match j.cone {
-        Some(_) => twist - cone_lean(axis, b.dq * j.axis_b).1 * j.axial[0],
+        Some(_) => twist - cone_lean(axis, axis_b).1 * j.axial[0],
         None => twist,
     }
 }
