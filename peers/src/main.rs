@@ -12,10 +12,12 @@
 //! The scenes: the demo's spheres, tower, pyramid and rain, and the three big ones in
 //! `peers/scenes/` (a 5,050-cube flat pyramid, 100 small pyramids, a 4,096-ball pit).
 //!
-//! `cargo run --release -p tumble-peers [-- <scene filter>] [--threads N]`
+//! `cargo run --release -p tumble-peers [-- <scene filter>] [--threads N]`; with
+//! `--scaling`, the ball pit at 1k … 16k balls and each engine's fitted exponent.
 
 mod avian;
 mod rapier;
+mod scaling;
 
 use std::time::Instant;
 
@@ -130,6 +132,12 @@ fn median(v: &mut [f64]) -> f64 {
 fn compare(file: &str) {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let scene = SceneDesc::load(dir.join(file)).expect("scene file");
+    compare_scene(&scene);
+}
+
+/// Times the three engines on `scene`, prints the table, and returns each engine's median
+/// ms a step (tumble, avian3d, bevy_rapier3d).
+pub fn compare_scene(scene: &SceneDesc) -> [f64; 3] {
     let mut runs = [
         Run::new("tumble", tumble_app(&scene)),
         Run::new("avian3d", avian::app(&scene)),
@@ -159,7 +167,8 @@ fn compare(file: &str) {
         THREADS.get().unwrap_or(&1)
     );
     let base = median(&mut runs[0].samples.clone());
-    for run in runs.iter_mut() {
+    let mut out = [0.0; 3];
+    for (k, run) in runs.iter_mut().enumerate() {
         let m = median(&mut run.samples);
         let (drop, fastest) = run.behaviour();
         println!(
@@ -167,7 +176,9 @@ fn compare(file: &str) {
             run.engine,
             m / base
         );
+        out[k] = m;
     }
+    out
 }
 
 fn main() {
@@ -179,6 +190,10 @@ fn main() {
         .map(|n| n.parse::<usize>().expect("--threads takes a count").max(1))
         .unwrap_or(1);
     THREADS.set(threads).expect("set once");
+    if args.iter().any(|a| a == "--scaling") {
+        scaling::run();
+        return;
+    }
     let filters: Vec<String> = args
         .iter()
         .enumerate()
