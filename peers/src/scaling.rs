@@ -54,10 +54,17 @@ pub fn run() {
         let n = (nx * ny * nz) as f64;
         rows.push((n, crate::compare_scene(&ball_pit(nx, ny, nz))));
     }
-    println!("\n### Scaling: the ball pit, ms a step\n\n| balls | tumble | avian3d | bevy_rapier3d |\n|---:|---:|---:|---:|");
+    println!(
+        "\n### Scaling: the ball pit, ms a step\n\n| balls | tumble | avian3d | bevy_rapier3d |\n|---:|---:|---:|---:|"
+    );
     for (n, [t, a, r]) in &rows {
         println!("| {n} | {t:.2} | {a:.2} | {r:.2} |");
     }
     let fit = |k: usize| exponent(&rows.iter().map(|(n, m)| (*n, m[k])).collect::<Vec<_>>());
-    println!("| fitted exponent | {:.2} | {:.2} | {:.2} |", fit(0), fit(1), fit(2));
+    println!(
+        "| fitted exponent | {:.2} | {:.2} | {:.2} |",
+        fit(0),
+        fit(1),
+        fit(2)
+    );
 }
