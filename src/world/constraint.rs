@@ -240,6 +240,20 @@ impl Anchoring {
         if self.rolls() {
             return self.rolling_anchors(p, a, b, arms);
         }
+        self.plain_anchors(p, a, b)
+    }
+
+    /// [`anchors`](Self::anchors) of a contact known to have no rolling motion: no call
+    /// at all, so a solver loop built on it keeps its bodies in registers (a possible
+    /// call, even a cold one, made the loop spill them: the contact solve ran 60 %
+    /// slower on 35 bouncing balls).
+    #[inline(always)]
+    pub(crate) fn plain_anchors(
+        &self,
+        p: &ConstraintPoint,
+        a: &SolverBody,
+        b: &SolverBody,
+    ) -> (Vec3, Vec3) {
         let ca = if self.turn[0] { a.dq * p.ra } else { p.ra };
         let cb = if self.turn[1] { b.dq * p.rb } else { p.rb };
         (ca, cb)

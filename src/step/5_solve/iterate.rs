@@ -95,7 +95,44 @@ pub fn solve(
     use_bias: bool,
 ) {
     let inv_h = 1.0 / h;
+    // The contacts without a rolling motion (nearly all) in a loop that calls nothing,
+    // then the few with one (`arms` is empty when there are none).
     for c in constraints.iter_mut() {
+        if !c.anchoring.rolls() {
+            solve_one::<false>(bodies, c, arms, inv_h, use_bias);
+        }
+    }
+    if !arms.is_empty() {
+        for c in constraints.iter_mut().filter(|c| c.anchoring.rolls()) {
+            solve_rolling(bodies, c, arms, inv_h, use_bias);
+        }
+    }
+}
+
+/// [`solve_one`] for a contact with a rolling motion: out of line, so that the common
+/// loop above holds no call.
+#[cold]
+#[inline(never)]
+fn solve_rolling(
+    bodies: &mut [SolverBody],
+    c: &mut ContactConstraint,
+    arms: &[RollingArms],
+    inv_h: f32,
+    use_bias: bool,
+) {
+    solve_one::<true>(bodies, c, arms, inv_h, use_bias);
+}
+
+/// One contact's pass (see [`solve`]); `ROLLS`: it has a rolling motion.
+#[inline(always)]
+fn solve_one<const ROLLS: bool>(
+    bodies: &mut [SolverBody],
+    c: &mut ContactConstraint,
+    arms: &[RollingArms],
+    inv_h: f32,
+    use_bias: bool,
+) {
+    {
         let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
         let anchoring = c.anchoring;
         let dp = b.dp - a.dp;
@@ -110,7 +147,11 @@ pub fn solve(
         // between substeps), so measured once.
         let mut separation = [0.0f32; MAX_POINTS];
         for (s, p) in separation.iter_mut().zip(&c.points[..c.len]) {
-            let (ca, cb) = anchoring.anchors(p, &a, &b, arms);
+            let (ca, cb) = if ROLLS {
+                anchoring.anchors(p, &a, &b, arms)
+            } else {
+                anchoring.plain_anchors(p, &a, &b)
+            };
             *s = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
         }
         for _ in 0..sweeps {
