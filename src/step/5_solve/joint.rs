@@ -149,7 +149,8 @@ pub fn solve_joints(
     for j in joints.iter_mut() {
         let (mut a, mut b) = (body(bodies, j.a), body(bodies, j.b));
         let f = now(j, &a, &b);
-        let soft = &j.softness.clone();
+        let softness = j.softness;
+        let soft = &softness;
         match j.rows {
             JointRows::Fixed => {
                 solve_turns(j, &mut a, &mut b, soft, use_bias);
