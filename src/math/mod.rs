@@ -8,6 +8,7 @@ mod ballistic;
 mod explicit_euler;
 mod frames;
 mod gyroscopic;
+pub(crate) mod lanes;
 mod principal;
 mod rk4;
 pub(crate) mod semi_implicit;

@@ -6,7 +6,9 @@
 mod awake_tree;
 mod bounds_index;
 mod constraint;
+mod contact_batch;
 mod fixed_set;
+mod graph;
 mod joint;
 mod manifold;
 
@@ -15,7 +17,9 @@ pub(crate) use constraint::{
     Anchoring, AngularRow, ConstraintPoint, ContactConstraint, ContactParams, NO_ROLL, RollingArms,
     body, row_velocity, store,
 };
+pub(crate) use contact_batch::{ContactBatch, PointLanes};
 pub(crate) use fixed_set::FixedSet;
+pub(crate) use graph::{ConstraintGraph, LANES, NO_CONTACT, moved_by_contacts};
 pub(crate) use joint::{JointConstraint, JointRows, ordered_pair};
 pub(crate) use manifold::{MAX_POINTS, Manifold};
 
@@ -269,6 +273,8 @@ pub struct PhysicsWorld {
     /// Substeps the contact solver took last step (the setting, or more for stiff
     /// contacts).
     pub(crate) substeps: u32,
+    /// Solve and relax passes per substep in the last step.
+    pub(crate) iterations: u32,
     /// Steps taken since the plugin started.
     pub(crate) step_count: u64,
 }
@@ -284,6 +290,17 @@ impl PhysicsWorld {
     /// stiff contacts asked for them (see `SolverSettings::max_sag`).
     pub fn substeps(&self) -> u32 {
         self.substeps
+    }
+
+    /// Solve (and relax) passes per substep in the last step: the setting, or more when
+    /// heavy loads on light bodies asked for them (see `SolverSettings::iterations`).
+    pub fn iterations(&self) -> u32 {
+        self.iterations
+    }
+
+    /// Contact points of the last step's manifolds.
+    pub fn contact_points(&self) -> usize {
+        self.manifolds.iter().map(|m| m.len).sum()
     }
 
     /// Dynamic and kinematic bodies simulated in the last step (sleepers not counted).

@@ -54,9 +54,21 @@ fn apply_tangent(
     apply(a, b, p, ang, spin);
 }
 
-/// Applies last step's accumulated impulses (already in the constraints).
-pub fn warm_start(bodies: &mut [SolverBody], constraints: &[ContactConstraint]) {
-    for c in constraints {
+/// Applies last step's accumulated impulses (already in the constraints) of the listed
+/// contacts (the constraint graph's overflow; its batches have their own pass).
+pub fn warm_start_listed(
+    bodies: &mut [SolverBody],
+    constraints: &[ContactConstraint],
+    listed: &[u32],
+) {
+    listed
+        .iter()
+        .for_each(|&i| warm_start_one(bodies, &constraints[i as usize]));
+}
+
+#[inline(always)]
+fn warm_start_one(bodies: &mut [SolverBody], c: &ContactConstraint) {
+    {
         let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
         for p in &c.points[..c.len] {
             apply_normal(
@@ -82,29 +94,36 @@ pub fn warm_start(bodies: &mut [SolverBody], constraints: &[ContactConstraint]) 
     }
 }
 
-/// One Gauss–Seidel pass: for each manifold, the normal rows of all its points (soft with
-/// bias, or rigid when relaxing), then the friction disc of each point clamped to μ·λn
-/// with the updated normal impulses. Accumulated impulses are clamped, never increments.
-/// Speculative points (s > 0) may close their gap, not more. Impulses act at the
-/// start-of-step anchors; the separation follows the anchors as the bodies move and turn.
-pub fn solve(
+/// One Gauss–Seidel pass over the listed contacts (the constraint graph's overflow; its
+/// batches have their own pass, lane by lane the same as this): for each manifold, the
+/// normal rows of all its points (soft with bias, or rigid when relaxing), then the
+/// friction disc of each point clamped to μ·λn with the updated normal impulses.
+/// Accumulated impulses are clamped, never increments. Speculative points (s > 0) may
+/// close their gap, not more. Impulses act at the start-of-step anchors; the separation
+/// follows the anchors as the bodies move and turn.
+pub fn solve_listed(
     bodies: &mut [SolverBody],
     constraints: &mut [ContactConstraint],
+    listed: &[u32],
     arms: &[RollingArms],
     h: f32,
     use_bias: bool,
 ) {
     let inv_h = 1.0 / h;
-    // The contacts without a rolling motion (nearly all) in a loop that calls nothing,
-    // then the few with one (`arms` is empty when there are none).
-    for c in constraints.iter_mut() {
+    // The contacts without a rolling motion in a loop that calls nothing, then the few
+    // with one (`arms` is empty when there are none).
+    for &i in listed {
+        let c = &mut constraints[i as usize];
         if !c.anchoring.rolls() {
             solve_one::<false>(bodies, c, arms, inv_h, use_bias);
         }
     }
     if !arms.is_empty() {
-        for c in constraints.iter_mut().filter(|c| c.anchoring.rolls()) {
-            solve_rolling(bodies, c, arms, inv_h, use_bias);
+        for &i in listed {
+            let c = &mut constraints[i as usize];
+            if c.anchoring.rolls() {
+                solve_rolling(bodies, c, arms, inv_h, use_bias);
+            }
         }
     }
 }

@@ -8,6 +8,9 @@ mod continuous;
 mod iterate;
 mod joint;
 mod stiffness;
+mod wide;
+#[cfg(test)]
+mod wide_tests;
 
 use bevy::prelude::*;
 
@@ -15,15 +18,17 @@ use crate::effects::Effects;
 use crate::math::{FreeStep, Inertial, Softness, free_substep, rotate};
 use crate::settings::{Gravity, Integrator, SolverSettings};
 use crate::world::{
-    ContactConstraint, ContactParams, PhysicsWorld, STATIC, is_isotropic, world_inv_inertia,
+    ConstraintGraph, ContactConstraint, ContactParams, PhysicsWorld, STATIC, is_isotropic,
+    world_inv_inertia,
 };
 
 pub use contact::{prepare_constraints, refresh_rows, sum_impulses};
 pub use continuous::sweep_against_fixed;
-pub use iterate::{apply_restitution, solve, stop_approach, warm_start};
+pub use iterate::{apply_restitution, solve_listed, stop_approach, warm_start_listed};
 use joint::{solve_joints, store_joint_forces, warm_start_joints};
 use stiffness::{JOINT_DAMPING_RATIO, joint_hertz};
 pub use stiffness::{pair_size, substeps_for, wanted_hertz};
+pub use wide::{solve_batches, warm_start_batches};
 
 /// The solver's stages in execution order. `PrepareContacts` runs once per step; the
 /// five substep stages run `substeps` times; `Restitution` and `StoreImpulses` once.
@@ -58,6 +63,8 @@ pub struct SolverScratch {
     refresh: bool,
     /// Some constraint reports its impulses (a collider with collision events).
     report: bool,
+    /// This step's contacts coloured into batches solved side by side.
+    graph: ConstraintGraph,
 }
 
 /// Solves every contact of this step.
@@ -142,6 +149,7 @@ pub fn solve_contacts(
             sum_impulses(&world.constraints, &mut world.manifolds);
         }
     }
+    scratch.graph.write_back(&mut world.constraints);
     if effects.restitution {
         run(SolverStage::Restitution, world, scratch);
     }
@@ -187,8 +195,11 @@ fn run_stage(
                 j.softness = Softness::new(wanted.min(stiffness.max_hertz), JOINT_DAMPING_RATIO, h);
             }
             scratch.iterations = iterations_for(settings.iterations, ratio);
+            world.iterations = scratch.iterations;
             scratch.refresh = world.constraints.iter().any(|c| c.refresh);
             scratch.report = world.constraints.iter().any(|c| c.report);
+            let fixed = scratch.fixed_constraints;
+            scratch.graph.build(&world.constraints, bodies, fixed);
         }
         SolverStage::IntegrateVelocities => {
             scratch.free.clear();
@@ -206,7 +217,9 @@ fn run_stage(
         }
         SolverStage::WarmStart => {
             warm_start_joints(bodies, &world.joints);
-            warm_start(bodies, &world.constraints);
+            let graph = &scratch.graph;
+            warm_start_batches(bodies, &graph.batches, &graph.points);
+            warm_start_listed(bodies, &world.constraints, &graph.overflow);
         }
         SolverStage::Solve | SolverStage::Relax => {
             let use_bias = stage == SolverStage::Solve;
@@ -221,9 +234,17 @@ fn run_stage(
                 // Joints first, then contacts (Box2D's order): the contacts have the
                 // last word on what touches.
                 solve_joints(bodies, &mut world.joints, h, use_bias);
-                let arms = &world.rolling_arms;
-                solve(bodies, &mut world.constraints, arms, h, use_bias);
-                solve(bodies, &mut world.constraints[..fixed], arms, h, use_bias);
+                let (arms, constraints) = (&world.rolling_arms, &mut world.constraints);
+                let graph = &mut scratch.graph;
+                let overflow = &graph.overflow;
+                let fixed_overflow = overflow.partition_point(|&i| (i as usize) < fixed);
+                let points = &mut graph.points;
+                solve_batches(bodies, &graph.batches, points, h, use_bias);
+                solve_listed(bodies, constraints, overflow, arms, h, use_bias);
+                let fixed_batches = &graph.batches[..graph.fixed_batches];
+                solve_batches(bodies, fixed_batches, points, h, use_bias);
+                let overflow = &overflow[..fixed_overflow];
+                solve_listed(bodies, constraints, overflow, arms, h, use_bias);
             }
         }
         SolverStage::IntegratePositions => {

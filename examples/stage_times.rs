@@ -1,0 +1,71 @@
+//! Where a scene's step spends its time: loads a scene file, runs it headless (one step
+//! per update, sleeping off as in `peers/`), and prints each stage's median wall
+//! time over the timed steps with the step's counts (substeps, manifolds).
+//!
+//! ```sh
+//! cargo run --release --example stage_times -- peers/scenes/large_pyramid.scene.ron 30 100
+//! ```
+
+use bevy::prelude::*;
+use bevy::time::TimeUpdateStrategy;
+use tumble::prelude::*;
+use tumble::scene::SceneDesc;
+use tumble::timings::STAGES;
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let Some(file) = args.next() else {
+        eprintln!("usage: stage_times <scene file> [warm-up steps] [timed steps]");
+        std::process::exit(2);
+    };
+    let warm: u64 = args
+        .next()
+        .map_or(30, |s| s.parse().expect("warm-up steps"));
+    let timed: usize = args.next().map_or(100, |s| s.parse().expect("timed steps"));
+    let scene = SceneDesc::load(&file).unwrap_or_else(|e| {
+        eprintln!("{e}");
+        std::process::exit(1);
+    });
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, TransformPlugin, TumblePlugin::default()))
+        .insert_resource(TimeUpdateStrategy::FixedTimesteps(1));
+    app.update();
+    scene.spawn_into(app.world_mut());
+    app.world_mut().resource_mut::<Effects>().sleeping = false;
+    for _ in 0..warm {
+        app.update();
+    }
+    let mut stages = vec![Vec::with_capacity(timed); STAGES.len()];
+    let (mut total, mut counts) = (Vec::new(), (0, 0, 0, 0));
+    for _ in 0..timed {
+        app.update();
+        let t = app.world().resource::<StepTimings>();
+        for (s, ms) in stages.iter_mut().zip(t.stage_ms) {
+            s.push(ms);
+        }
+        total.push(t.total_ms());
+        let w = app.world().resource::<PhysicsWorld>();
+        counts = (
+            counts.0.max(w.substeps()),
+            counts.1.max(w.iterations()),
+            w.contact_manifolds(),
+            w.contact_points(),
+        );
+    }
+    let (substeps, iterations, manifolds, points) = counts;
+    println!("{file}: {timed} steps after {warm}");
+    println!("  substeps {substeps}, passes {iterations}, manifolds {manifolds}, points {points}");
+    for (name, s) in STAGES.iter().zip(&mut stages) {
+        println!("  {name:<14} {:8.3} ms", median(s));
+    }
+    println!(
+        "  {:<14} {:8.3} ms (median step)",
+        "total",
+        median(&mut total)
+    );
+}

@@ -1,0 +1,255 @@
+//! The contact passes over the constraint graph's batches: four contacts that share no
+//! moved body, solved side by side in `f32x4` lanes. Each lane does exactly what
+//! [`iterate`](super::iterate) does for one contact, in the same order (the scalar pass
+//! stays as the reference these are tested against, bit for bit). A batch holds its
+//! contacts lane by lane ([`ContactBatch`]) and gathers its bodies' velocities.
+
+use crate::math::lanes::{F4, Q4, V3, clamp, eq, gt, lanes, le, lt, max, neg, select};
+use crate::world::{
+    ContactBatch, LANES, MAX_POINTS, PointLanes, SolverBody, body, moved_by_contacts,
+};
+
+use super::iterate::{NORMAL_SWEEPS, NORMAL_TOL};
+
+/// One side's bodies of a batch.
+struct BodyLanes {
+    v: V3,
+    w: V3,
+    dp: V3,
+    dq: Q4,
+    inv_mass: F4,
+}
+
+impl BodyLanes {
+    #[inline(always)]
+    fn gather(bodies: &[SolverBody], index: [u32; LANES]) -> Self {
+        let (b0, b1) = (body(bodies, index[0]), body(bodies, index[1]));
+        let (b2, b3) = (body(bodies, index[2]), body(bodies, index[3]));
+        Self {
+            v: V3::gather([b0.v, b1.v, b2.v, b3.v]),
+            w: V3::gather([b0.w, b1.w, b2.w, b3.w]),
+            dp: V3::gather([b0.dp, b1.dp, b2.dp, b3.dp]),
+            dq: Q4::gather([b0.dq, b1.dq, b2.dq, b3.dq]),
+            inv_mass: lanes([b0.inv_mass, b1.inv_mass, b2.inv_mass, b3.inv_mass]),
+        }
+    }
+
+    /// Velocities back to the bodies the contacts move.
+    #[inline(always)]
+    fn scatter(&self, bodies: &mut [SolverBody], index: [u32; LANES]) {
+        for (l, &i) in index.iter().enumerate() {
+            if moved_by_contacts(bodies, i) {
+                let s = &mut bodies[i as usize];
+                (s.v, s.w) = (self.v.lane(l), self.w.lane(l));
+            }
+        }
+    }
+
+    /// Impulse `p` with its angular part on this side: +p on body b, −p on body a.
+    #[inline(always)]
+    fn push(&mut self, p: V3, angular: V3, on_b: bool) {
+        if on_b {
+            self.v = self.v.add(p.scale(self.inv_mass));
+            self.w = self.w.add(angular);
+        } else {
+            self.v = self.v.sub(p.scale(self.inv_mass));
+            self.w = self.w.sub(angular);
+        }
+    }
+}
+
+/// The angular parts of one row along `d` at a point, lane by lane, as
+/// [`AngularRow::new`](crate::world::AngularRow::new) makes them: r × d for each body and
+/// their images under its inverse inertia (a multiple of the identity in a batch: the
+/// same bits as the matrix product, but for the sign of a zero).
+#[derive(Clone, Copy)]
+struct RowLanes {
+    ra: V3,
+    rb: V3,
+    ia: V3,
+    ib: V3,
+}
+
+impl RowLanes {
+    #[inline(always)]
+    fn new(inv_inertia: &[F4; 2], p: &PointLanes, d: V3) -> Self {
+        let (ra, rb) = (p.ra.cross(d), p.rb.cross(d));
+        Self {
+            ra,
+            rb,
+            ia: ra.scale(inv_inertia[0]),
+            ib: rb.scale(inv_inertia[1]),
+        }
+    }
+}
+
+/// The row velocity of b relative to a along `d`, with the row's angular parts.
+#[inline(always)]
+fn row_velocity(a: &BodyLanes, b: &BodyLanes, d: V3, row: &RowLanes) -> F4 {
+    d.dot(b.v.sub(a.v)) - a.w.dot(row.ra) + b.w.dot(row.rb)
+}
+
+/// A normal impulse `dl` at one point.
+#[inline(always)]
+fn apply_normal(a: &mut BodyLanes, b: &mut BodyLanes, n: V3, row: &RowLanes, dl: F4) {
+    let p = n.scale(dl);
+    a.push(p, row.ia.scale(dl), false);
+    b.push(p, row.ib.scale(dl), true);
+}
+
+/// A friction impulse `d` along the two tangents at one point.
+#[inline(always)]
+fn apply_tangent(
+    a: &mut BodyLanes,
+    b: &mut BodyLanes,
+    t: &[V3; 2],
+    rows: &[RowLanes; 2],
+    d: [F4; 2],
+) {
+    let p = t[0].scale(d[0]).add(t[1].scale(d[1]));
+    a.push(p, rows[0].ia.scale(d[0]).add(rows[1].ia.scale(d[1])), false);
+    b.push(p, rows[0].ib.scale(d[0]).add(rows[1].ib.scale(d[1])), true);
+}
+
+/// [`warm_start_listed`](super::iterate::warm_start_listed) over the batches.
+pub fn warm_start_batches(
+    bodies: &mut [SolverBody],
+    batches: &[ContactBatch],
+    points: &[PointLanes],
+) {
+    for c in batches {
+        let (mut a, mut b) = (
+            BodyLanes::gather(bodies, c.a),
+            BodyLanes::gather(bodies, c.b),
+        );
+        for p in &points[c.range()] {
+            let normal = RowLanes::new(&c.inv_inertia, p, c.normal);
+            let tangent = [
+                RowLanes::new(&c.inv_inertia, p, c.tangents[0]),
+                RowLanes::new(&c.inv_inertia, p, c.tangents[1]),
+            ];
+            apply_normal(&mut a, &mut b, c.normal, &normal, p.normal_impulse);
+            apply_tangent(&mut a, &mut b, &c.tangents, &tangent, p.tangent_impulse);
+        }
+        a.scatter(bodies, c.a);
+        b.scatter(bodies, c.b);
+    }
+}
+
+/// [`solve_listed`](super::iterate::solve_listed) over the batches (contacts without a
+/// rolling motion).
+pub fn solve_batches(
+    bodies: &mut [SolverBody],
+    batches: &[ContactBatch],
+    points: &mut [PointLanes],
+    h: f32,
+    use_bias: bool,
+) {
+    let inv_h = F4::splat(1.0 / h);
+    for c in batches {
+        solve_batch(bodies, c, &mut points[c.range()], inv_h, use_bias);
+    }
+}
+
+#[inline(always)]
+fn solve_batch(
+    bodies: &mut [SolverBody],
+    c: &ContactBatch,
+    point: &mut [PointLanes],
+    inv_h: F4,
+    use_bias: bool,
+) {
+    let (zero, one) = (F4::ZERO, F4::ONE);
+    let (mut a, mut b) = (
+        BodyLanes::gather(bodies, c.a),
+        BodyLanes::gather(bodies, c.b),
+    );
+    let n = point.len();
+    let dp = b.dp.sub(a.dp);
+    let mut separation = [zero; MAX_POINTS];
+    let mut normal = [RowLanes {
+        ra: V3::ZERO,
+        rb: V3::ZERO,
+        ia: V3::ZERO,
+        ib: V3::ZERO,
+    }; MAX_POINTS];
+    for ((s, row), p) in separation.iter_mut().zip(&mut normal).zip(&*point) {
+        *row = RowLanes::new(&c.inv_inertia, p, c.normal);
+        let ca = V3::select(c.turn[0], a.dq.rotate(p.ra), p.ra);
+        let cb = V3::select(c.turn[1], b.dq.rotate(p.rb), p.rb);
+        *s = c.normal.dot(dp.add(cb).sub(ca)) + p.adjusted_separation;
+    }
+    // The normal sweeps: a lane stops as the scalar pass does (one sweep for a single
+    // point, at most NORMAL_SWEEPS, none after a settled or capped one).
+    let multi = c.has[1];
+    let mut active = c.has[0];
+    for sweep in 0..NORMAL_SWEEPS {
+        if sweep > 0 {
+            active = active & multi;
+        }
+        if active.none() {
+            break;
+        }
+        let (mut largest, mut total, mut capped) = (zero, zero, zero);
+        for k in 0..n {
+            let (p, s) = (&mut point[k], separation[k]);
+            let on = active & c.has[k];
+            let speculative = gt(s, zero);
+            let (bias, mass_scale, impulse_scale) = if use_bias {
+                let soft = c.bias_rate * s;
+                let cap = neg(c.max_push);
+                capped = capped | (on & !speculative & lt(soft, cap));
+                (
+                    select(speculative, s * inv_h, max(soft, cap)),
+                    select(speculative, one, c.mass_scale),
+                    select(speculative, zero, c.impulse_scale),
+                )
+            } else {
+                (select(speculative, s * inv_h, zero), one, zero)
+            };
+            let vn = row_velocity(&a, &b, c.normal, &normal[k]);
+            let lambda =
+                neg(p.normal_mass) * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
+            let new = max(p.normal_impulse + lambda, zero);
+            let first = on & eq(p.max_normal_impulse, zero) & gt(new, zero);
+            let prepared = p.relative_velocity;
+            let approach = clamp(vn, prepared - c.approach_gain, prepared);
+            p.relative_velocity = select(first, approach, prepared);
+            let dl = select(on, new - p.normal_impulse, zero);
+            p.normal_impulse = select(on, new, p.normal_impulse);
+            p.max_normal_impulse = select(on, max(p.max_normal_impulse, new), p.max_normal_impulse);
+            apply_normal(&mut a, &mut b, c.normal, &normal[k], dl);
+            largest = max(largest, dl.abs());
+            total = total + select(on, new, zero);
+        }
+        let settled = capped | le(largest, F4::splat(NORMAL_TOL) * total);
+        active = active & !settled;
+    }
+    // Friction (lanes of frictionless pairs do nothing).
+    let rubs = gt(c.friction, zero);
+    for k in 0..n {
+        let p = &mut point[k];
+        let on = rubs & c.has[k];
+        let tangent = [
+            RowLanes::new(&c.inv_inertia, p, c.tangents[0]),
+            RowLanes::new(&c.inv_inertia, p, c.tangents[1]),
+        ];
+        let vt0 = row_velocity(&a, &b, c.tangents[0], &tangent[0]);
+        let vt1 = row_velocity(&a, &b, c.tangents[1], &tangent[1]);
+        let [old0, old1] = p.tangent_impulse;
+        let limit = c.friction * p.normal_impulse;
+        let (free0, free1) = (old0 - p.tangent_mass * vt0, old1 - p.tangent_mass * vt1);
+        let length_squared = free0 * free0 + free1 * free1;
+        let over = gt(length_squared, limit * limit);
+        let length = length_squared.sqrt();
+        let new0 = select(over, limit * (free0 / length), free0);
+        let new1 = select(over, limit * (free1 / length), free1);
+        let finite = new0.is_finite() & new1.is_finite();
+        let (new0, new1) = (select(finite, new0, zero), select(finite, new1, zero));
+        let d = [select(on, new0 - old0, zero), select(on, new1 - old1, zero)];
+        p.tangent_impulse = [select(on, new0, old0), select(on, new1, old1)];
+        apply_tangent(&mut a, &mut b, &c.tangents, &tangent, d);
+    }
+    a.scatter(bodies, c.a);
+    b.scatter(bodies, c.b);
+}

@@ -1,0 +1,193 @@
+//! The batched passes against the scalar ones they stand for (Jolt's way: the plain
+//! loop is kept as the reference for the fast path). On random contacts between random
+//! bodies, the contacts of each batch solved one after another by the scalar pass and
+//! side by side by the lanes must leave every velocity and impulse bit for bit equal.
+
+use bevy::prelude::*;
+
+use super::iterate::{solve_listed, warm_start_listed};
+use super::wide::{solve_batches, warm_start_batches};
+use crate::math::Softness;
+use crate::rng::Rnd;
+use crate::world::{
+    Anchoring, AngularRow, ConstraintGraph, ConstraintPoint, ContactConstraint, NO_CONTACT,
+    NO_ROLL, STATIC, SolverBody, body, world_inv_inertia,
+};
+
+fn random_body(r: &mut Rnd) -> SolverBody {
+    let kind = r.unit();
+    let (inv_mass, inv_inertia) = if kind < 0.1 {
+        (0.0, Mat3::ZERO) // kinematic
+    } else if kind < 0.2 {
+        (r.range(0.1, 2.0), Mat3::ZERO) // locked rotation
+    } else if kind < 0.6 {
+        (
+            r.range(0.01, 2.0),
+            Mat3::from_diagonal(Vec3::splat(r.range(0.2, 3.0))),
+        )
+    } else {
+        let principal = r.vec(0.2, 3.0);
+        (r.range(0.01, 2.0), world_inv_inertia(r.rot(), principal))
+    };
+    let still = inv_inertia == Mat3::ZERO && r.unit() < 0.5;
+    SolverBody {
+        v: r.vec(-3.0, 3.0),
+        w: if still { Vec3::ZERO } else { r.vec(-5.0, 5.0) },
+        dp: r.vec(-0.02, 0.02),
+        dq: Quat::from_scaled_axis(r.vec(-0.05, 0.05)),
+        inv_mass,
+        inv_inertia,
+    }
+}
+
+fn isotropic(b: &SolverBody) -> bool {
+    b.inv_inertia == Mat3::from_diagonal(Vec3::splat(b.inv_inertia.x_axis.x))
+}
+
+fn random_contact(r: &mut Rnd, bodies: &[SolverBody], fixed: bool) -> ContactConstraint {
+    let n = bodies.len() as u32;
+    let pick = |r: &mut Rnd| ((r.unit() * n as f32) as u32).min(n - 1);
+    let (mut a, mut b) = (pick(r), pick(r));
+    while a == b {
+        b = pick(r);
+    }
+    if fixed {
+        a = STATIC;
+    }
+    let (sa, sb) = (body(bodies, a), body(bodies, b));
+    let normal = r.dir();
+    let (t1, t2) = normal.any_orthonormal_pair();
+    let len = 1 + (r.unit() * 4.0) as usize % 4;
+    let spin = [sa, sb].map(|s| s.w != Vec3::ZERO || s.inv_inertia != Mat3::ZERO);
+    let mut points = [ConstraintPoint::default(); 4];
+    for p in &mut points[..len] {
+        let (ra, rb) = (r.vec(-0.5, 0.5), r.vec(-0.5, 0.5));
+        let row = |d: Vec3| AngularRow::new(&sa, &sb, ra, rb, d);
+        let (normal_row, tangent_rows) = (row(normal), [row(t1), row(t2)]);
+        let linear = sa.inv_mass + sb.inv_mass;
+        let k = linear + normal_row.inv_mass(spin);
+        let kt = linear + 0.5 * (tangent_rows[0].inv_mass(spin) + tangent_rows[1].inv_mass(spin));
+        *p = ConstraintPoint {
+            ra,
+            rb,
+            // Some points apart (speculative), most touching or overlapping.
+            adjusted_separation: r.range(-0.05, 0.02),
+            normal_row,
+            tangent_rows,
+            normal_mass: if k > 0.0 { 1.0 / k } else { 0.0 },
+            tangent_mass: if kt > 0.0 { 1.0 / kt } else { 0.0 },
+            normal_impulse: if r.unit() < 0.3 {
+                0.0
+            } else {
+                r.range(0.0, 2.0)
+            },
+            tangent_impulse: Vec2::new(r.range(-0.5, 0.5), r.range(-0.5, 0.5)),
+            max_normal_impulse: if r.unit() < 0.5 {
+                0.0
+            } else {
+                r.range(0.0, 2.0)
+            },
+            relative_velocity: r.range(-4.0, 1.0),
+        };
+    }
+    ContactConstraint {
+        a,
+        b,
+        manifold: 0,
+        normal,
+        tangent1: t1,
+        tangent2: t2,
+        anchoring: Anchoring {
+            turn: [r.unit() < 0.7, r.unit() < 0.7],
+            roll: NO_ROLL,
+        },
+        spin,
+        // As prepare marks them: a turning anisotropic body's rows are refreshed every
+        // substep, and such contacts stay out of the batches.
+        refresh: [sa, sb]
+            .iter()
+            .zip(spin)
+            .any(|(s, spin)| spin && !isotropic(s)),
+        report: false,
+        friction: if r.unit() < 0.2 {
+            0.0
+        } else {
+            r.range(0.1, 1.0)
+        },
+        restitution: 0.0,
+        approach_gain: 9.81 / 60.0,
+        softness: Softness::new(r.range(5.0, 60.0), r.range(1.0, 10.0), 1.0 / 240.0),
+        max_push: if r.unit() < 0.3 { 0.05 } else { 3.0 },
+        points,
+        len,
+    }
+}
+
+/// The batches' order as a list (the order the scalar reference solves them in).
+fn batch_order(graph: &ConstraintGraph) -> Vec<u32> {
+    let lanes = graph.batches.iter().flat_map(|b| b.contact);
+    lanes.filter(|&c| c != NO_CONTACT).collect()
+}
+
+fn assert_same(bodies: &[SolverBody], reference: &[SolverBody], what: &str) {
+    for (i, (x, y)) in bodies.iter().zip(reference).enumerate() {
+        assert!(
+            x.v == y.v && x.w == y.w,
+            "{what}: body {i}: {x:?} against {y:?}"
+        );
+    }
+}
+
+#[test]
+fn batches_match_the_scalar_pass_bit_for_bit() {
+    let mut r = Rnd(0x5eed_0017);
+    for round in 0..40 {
+        let bodies: Vec<SolverBody> = (0..24).map(|_| random_body(&mut r)).collect();
+        let fixed = 10;
+        let mut constraints: Vec<ContactConstraint> = (0..60)
+            .map(|i| random_contact(&mut r, &bodies, i < fixed))
+            .collect();
+        let mut graph = ConstraintGraph::default();
+        graph.build(&constraints, &bodies, fixed);
+        assert!(graph.is_valid(&constraints, &bodies));
+        let order = batch_order(&graph);
+        assert_eq!(order.len() + graph.overflow.len(), constraints.len());
+
+        let (mut lanes, mut scalar) = (bodies.clone(), bodies.clone());
+        warm_start_batches(&mut lanes, &graph.batches, &graph.points);
+        warm_start_listed(&mut scalar, &constraints, &order);
+        assert_same(&lanes, &scalar, &format!("round {round}: warm start"));
+
+        for (pass, use_bias) in [true, false, true].into_iter().enumerate() {
+            solve_batches(
+                &mut lanes,
+                &graph.batches,
+                &mut graph.points,
+                1.0 / 240.0,
+                use_bias,
+            );
+            solve_listed(
+                &mut scalar,
+                &mut constraints,
+                &order,
+                &[],
+                1.0 / 240.0,
+                use_bias,
+            );
+            assert_same(&lanes, &scalar, &format!("round {round}, pass {pass}"));
+        }
+        let mut from_lanes = constraints.clone();
+        graph.write_back(&mut from_lanes);
+        for (i, (x, y)) in from_lanes.iter().zip(&constraints).enumerate() {
+            for (p, q) in x.points[..x.len].iter().zip(&y.points) {
+                assert!(
+                    p.normal_impulse == q.normal_impulse
+                        && p.tangent_impulse == q.tangent_impulse
+                        && p.max_normal_impulse == q.max_normal_impulse
+                        && p.relative_velocity == q.relative_velocity,
+                    "round {round}: contact {i}: {p:?} against {q:?}"
+                );
+            }
+        }
+    }
+}

@@ -1,0 +1,196 @@
+//! Contact batches: four contacts of one colour of the [`ConstraintGraph`](super::ConstraintGraph)
+//! stored lane by lane (structure of arrays), built once a step from their
+//! [`ContactConstraint`]s, so that the solver's passes load whole lanes at once. The
+//! accumulated impulses go back to the constraints when the passes are done.
+
+use bevy::prelude::*;
+
+use super::{
+    ConstraintPoint, ContactConstraint, LANES, MAX_POINTS, NO_CONTACT, STATIC, SolverBody, body,
+};
+use crate::math::lanes::{F4, V3};
+
+/// One point of each lane's contact; zeros past a contact's points. Only what the
+/// passes change or cannot rebuild: the rows' angular parts (see [`AngularRow`](super::AngularRow)) are
+/// rebuilt from the anchors in each pass, which costs less than loading them (the big
+/// scenes' constraints did not fit the cache).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PointLanes {
+    /// Anchors from each body's centre, world frame, start of step, m.
+    pub ra: V3,
+    pub rb: V3,
+    /// See [`ConstraintPoint::adjusted_separation`], m.
+    pub adjusted_separation: F4,
+    /// Effective masses, kg.
+    pub normal_mass: F4,
+    pub tangent_mass: F4,
+    /// Accumulated impulses this substep, N·s.
+    pub normal_impulse: F4,
+    pub tangent_impulse: [F4; 2],
+    pub max_normal_impulse: F4,
+    /// See [`ConstraintPoint::relative_velocity`], m/s.
+    pub relative_velocity: F4,
+}
+
+/// Four contacts that share no body the solver moves, lane by lane.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ContactBatch {
+    /// The constraints in the lanes ([`NO_CONTACT`] for an empty lane).
+    pub contact: [u32; LANES],
+    /// Their bodies ([`STATIC`] for an empty lane).
+    pub a: [u32; LANES],
+    pub b: [u32; LANES],
+    pub normal: V3,
+    pub tangents: [V3; 2],
+    /// Each side's inverse inertia, 1/(kg·m²): the same about every axis for every
+    /// body in a batch (an anisotropic body that turns has its rows refreshed every
+    /// substep, so its contacts stay out of the batches), zero for a static side.
+    pub inv_inertia: [F4; 2],
+    /// All-ones lanes where each side's anchor turns with its body.
+    pub turn: [F4; 2],
+    pub friction: F4,
+    /// m/s, see [`ContactConstraint::approach_gain`].
+    pub approach_gain: F4,
+    pub bias_rate: F4,
+    pub mass_scale: F4,
+    pub impulse_scale: F4,
+    /// m/s, see [`ContactConstraint::max_push`].
+    pub max_push: F4,
+    /// All-ones lanes whose contact has more than k points, per k.
+    pub has: [F4; MAX_POINTS],
+    /// Where the batch's points start in the graph's point lanes, and how many it has
+    /// (the most of any lane).
+    pub first: u32,
+    pub points: u32,
+}
+
+#[inline(always)]
+fn set(v: &mut F4, l: usize, x: f32) {
+    v.as_array_mut()[l] = x;
+}
+
+const ALL: f32 = f32::from_bits(u32::MAX);
+
+impl PointLanes {
+    const ZERO: Self = Self {
+        ra: V3::ZERO,
+        rb: V3::ZERO,
+        adjusted_separation: F4::ZERO,
+        normal_mass: F4::ZERO,
+        tangent_mass: F4::ZERO,
+        normal_impulse: F4::ZERO,
+        tangent_impulse: [F4::ZERO; 2],
+        max_normal_impulse: F4::ZERO,
+        relative_velocity: F4::ZERO,
+    };
+
+    fn set(&mut self, l: usize, p: &ConstraintPoint) {
+        self.ra.set(l, p.ra);
+        self.rb.set(l, p.rb);
+        set(&mut self.adjusted_separation, l, p.adjusted_separation);
+        set(&mut self.normal_mass, l, p.normal_mass);
+        set(&mut self.tangent_mass, l, p.tangent_mass);
+        set(&mut self.normal_impulse, l, p.normal_impulse);
+        set(&mut self.tangent_impulse[0], l, p.tangent_impulse.x);
+        set(&mut self.tangent_impulse[1], l, p.tangent_impulse.y);
+        set(&mut self.max_normal_impulse, l, p.max_normal_impulse);
+        set(&mut self.relative_velocity, l, p.relative_velocity);
+    }
+
+    /// Lane `l`'s accumulated impulses into its point.
+    fn write_back(&self, l: usize, p: &mut ConstraintPoint) {
+        p.normal_impulse = self.normal_impulse.as_array_ref()[l];
+        p.tangent_impulse = Vec2::new(
+            self.tangent_impulse[0].as_array_ref()[l],
+            self.tangent_impulse[1].as_array_ref()[l],
+        );
+        p.max_normal_impulse = self.max_normal_impulse.as_array_ref()[l];
+        p.relative_velocity = self.relative_velocity.as_array_ref()[l];
+    }
+}
+
+impl ContactBatch {
+    /// The batch of the listed constraints, its points appended to `points`.
+    pub(crate) fn new(
+        constraints: &[ContactConstraint],
+        bodies: &[SolverBody],
+        contact: [u32; LANES],
+        points: &mut Vec<PointLanes>,
+    ) -> Self {
+        let first = points.len();
+        let len = |ci: u32| (ci != NO_CONTACT).then(|| constraints[ci as usize].len);
+        let most = contact.iter().filter_map(|&ci| len(ci)).max().unwrap_or(0);
+        points.resize(first + most, PointLanes::ZERO);
+        let point = &mut points[first..];
+        let mut b = Self {
+            contact,
+            a: [STATIC; LANES],
+            b: [STATIC; LANES],
+            normal: V3::ZERO,
+            tangents: [V3::ZERO; 2],
+            inv_inertia: [F4::ZERO; 2],
+            turn: [F4::ZERO; 2],
+            friction: F4::ZERO,
+            approach_gain: F4::ZERO,
+            bias_rate: F4::ZERO,
+            mass_scale: F4::ZERO,
+            impulse_scale: F4::ZERO,
+            max_push: F4::ZERO,
+            has: [F4::ZERO; MAX_POINTS],
+            first: first as u32,
+            points: most as u32,
+        };
+        for (l, &ci) in contact.iter().enumerate() {
+            if ci == NO_CONTACT {
+                continue;
+            }
+            let c = &constraints[ci as usize];
+            (b.a[l], b.b[l]) = (c.a, c.b);
+            b.normal.set(l, c.normal);
+            b.tangents[0].set(l, c.tangent1);
+            b.tangents[1].set(l, c.tangent2);
+            for (side, i) in [c.a, c.b].into_iter().enumerate() {
+                let m = body(bodies, i).inv_inertia;
+                debug_assert_eq!(m, Mat3::from_diagonal(Vec3::splat(m.x_axis.x)), "batched");
+                set(&mut b.inv_inertia[side], l, m.x_axis.x);
+            }
+            for side in 0..2 {
+                set(
+                    &mut b.turn[side],
+                    l,
+                    if c.anchoring.turn[side] { ALL } else { 0.0 },
+                );
+            }
+            set(&mut b.friction, l, c.friction);
+            set(&mut b.approach_gain, l, c.approach_gain);
+            set(&mut b.bias_rate, l, c.softness.bias_rate);
+            set(&mut b.mass_scale, l, c.softness.mass_scale);
+            set(&mut b.impulse_scale, l, c.softness.impulse_scale);
+            set(&mut b.max_push, l, c.max_push);
+            for k in 0..c.len {
+                set(&mut b.has[k], l, ALL);
+                point[k].set(l, &c.points[k]);
+            }
+        }
+        b
+    }
+
+    /// Its point lanes in the graph's.
+    #[inline(always)]
+    pub(crate) fn range(&self) -> std::ops::Range<usize> {
+        self.first as usize..(self.first + self.points) as usize
+    }
+
+    /// The lanes' accumulated impulses back into their constraints.
+    pub(crate) fn write_back(&self, points: &[PointLanes], constraints: &mut [ContactConstraint]) {
+        let point = &points[self.range()];
+        for (l, &ci) in self.contact.iter().enumerate() {
+            if ci != NO_CONTACT {
+                let c = &mut constraints[ci as usize];
+                for (k, p) in c.points[..c.len].iter_mut().enumerate() {
+                    point[k].write_back(l, p);
+                }
+            }
+        }
+    }
+}
