@@ -1,6 +1,7 @@
 //! Where a scene's step spends its time: loads a scene file, runs it headless (one step
 //! per update, sleeping off as in `peers/`), and prints each stage's median wall
-//! time over the timed steps with the step's counts (substeps, manifolds).
+//! time over the timed steps with the step's counts (substeps, manifolds) and how far
+//! the bodies moved (the largest displacement of any body since it was spawned).
 //!
 //! ```sh
 //! cargo run --release --example stage_times -- peers/scenes/large_pyramid.scene.ron 30 100
@@ -35,7 +36,9 @@ fn main() {
     app.add_plugins((MinimalPlugins, TransformPlugin, TumblePlugin::default()))
         .insert_resource(TimeUpdateStrategy::FixedTimesteps(1));
     app.update();
-    scene.spawn_into(app.world_mut());
+    let bodies = scene.spawn_into(app.world_mut());
+    let position = |app: &App, e: Entity| app.world().get::<Transform>(e).map(|t| t.translation);
+    let start: Vec<_> = bodies.iter().map(|&e| position(&app, e)).collect();
     app.world_mut().resource_mut::<Effects>().sleeping = false;
     for _ in 0..warm {
         app.update();
@@ -67,5 +70,14 @@ fn main() {
         "  {:<14} {:8.3} ms (median step)",
         "total",
         median(&mut total)
+    );
+    let moved = bodies.iter().zip(&start);
+    let moved = moved.filter_map(|(&e, &s)| Some((position(&app, e)? - s?, s?)));
+    let (d, from) = moved.fold((Vec3::ZERO, Vec3::ZERO), |a, b| {
+        if b.0.length() > a.0.length() { b } else { a }
+    });
+    println!(
+        "  largest displacement {:.3} m (by {d}, from {from})",
+        d.length()
     );
 }

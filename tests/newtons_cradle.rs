@@ -13,7 +13,6 @@ mod common;
 
 use bevy::prelude::*;
 use common::*;
-use tumble::prelude::*;
 use tumble::scene::SceneDesc;
 
 #[test]

@@ -7,8 +7,9 @@
 //!
 //! Each engine runs at its own defaults (tumble 4 substeps; avian 6 substeps; rapier 4
 //! solver iterations = substeps, one step) with sleeping off everywhere. Threads: Bevy's
-//! compute pool pinned by `--threads N` (default 1, the calling thread alone); avian uses
-//! it, tumble does not yet, and bevy_rapier3d's `parallel` feature is off by default.
+//! compute pool pinned to `--threads N` threads (default 1); avian (with its default
+//! `parallel` feature) and tumble split work across it, and bevy_rapier3d's `parallel`
+//! feature is off by default.
 //! The scenes: the demo's spheres, tower, pyramid and rain, and the three big ones in
 //! `peers/scenes/` (a 5,050-cube flat pyramid, 100 small pyramids, a 4,096-ball pit).
 //!
@@ -22,6 +23,7 @@ mod scaling;
 use std::time::Instant;
 
 use bevy::app::{TaskPoolOptions, TaskPoolThreadAssignmentPolicy};
+use bevy::ecs::schedule::SingleThreadedExecutor;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use tumble::scene::SceneDesc;
@@ -44,11 +46,20 @@ struct Run {
 pub fn start(app: &mut App) {
     app.finish();
     app.cleanup();
+    // Systems run one after another on the caller, as in a headless test; the engines'
+    // own work is what uses the pool's threads (Bevy's multi-threaded executor costs
+    // about 0.7 ms an update here with one pool thread, more than a small scene's step).
+    let mut schedules = app.world_mut().resource_mut::<Schedules>();
+    for (_, schedule) in schedules.iter_mut() {
+        schedule.set_executor(SingleThreadedExecutor::new());
+    }
     app.update();
 }
 
-/// Threads the compute pool may use (`--threads N`; default 1): N − 1 pool threads and
-/// the thread that calls it.
+/// Threads of the compute pool (`--threads N`; default 1). Bevy is built here with
+/// `multi_threaded` (avian's default `parallel` feature turns it on), which needs at
+/// least one pool thread; at one, avian and tumble solve serially, and the caller only
+/// waits on it.
 static THREADS: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
 
 /// A headless app that runs exactly one 60 Hz fixed step per update, its compute pool
@@ -56,8 +67,8 @@ static THREADS: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
 pub fn headless_app() -> App {
     let threads = *THREADS.get().unwrap_or(&1);
     let compute = TaskPoolThreadAssignmentPolicy {
-        min_threads: threads - 1,
-        max_threads: threads - 1,
+        min_threads: threads,
+        max_threads: threads,
         percent: 1.0,
         on_thread_spawn: None,
         on_thread_destroy: None,

@@ -1,5 +1,6 @@
-//! Contact batches: four contacts of one colour of the [`ConstraintGraph`](super::ConstraintGraph)
-//! stored lane by lane (structure of arrays), built once a step from their
+//! Contact batches: four contacts that share no moved body (see
+//! [`ContactBatches`](super::ContactBatches)) stored lane by lane (structure of arrays),
+//! built once a step from their
 //! [`ContactConstraint`]s, so that the solver's passes load whole lanes at once. The
 //! accumulated impulses go back to the constraints when the passes are done.
 
@@ -7,6 +8,7 @@ use bevy::prelude::*;
 
 use super::{
     ConstraintPoint, ContactConstraint, LANES, MAX_POINTS, NO_CONTACT, STATIC, SolverBody, body,
+    moved_by_contacts,
 };
 use crate::math::lanes::{F4, V3};
 
@@ -40,6 +42,9 @@ pub(crate) struct ContactBatch {
     /// Their bodies ([`STATIC`] for an empty lane).
     pub a: [u32; LANES],
     pub b: [u32; LANES],
+    /// Whether the contacts move each lane's body on each side (see
+    /// [`moved_by_contacts`]): only those velocities are written back.
+    pub moved: [[bool; LANES]; 2],
     pub normal: V3,
     pub tangents: [V3; 2],
     /// Each side's inverse inertia, 1/(kg·m²): the same about every axis for every
@@ -126,6 +131,7 @@ impl ContactBatch {
             contact,
             a: [STATIC; LANES],
             b: [STATIC; LANES],
+            moved: [[false; LANES]; 2],
             normal: V3::ZERO,
             tangents: [V3::ZERO; 2],
             inv_inertia: [F4::ZERO; 2],
@@ -146,6 +152,8 @@ impl ContactBatch {
             }
             let c = &constraints[ci as usize];
             (b.a[l], b.b[l]) = (c.a, c.b);
+            b.moved[0][l] = moved_by_contacts(bodies, c.a);
+            b.moved[1][l] = moved_by_contacts(bodies, c.b);
             b.normal.set(l, c.normal);
             b.tangents[0].set(l, c.tangent1);
             b.tangents[1].set(l, c.tangent2);

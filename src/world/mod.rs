@@ -4,22 +4,22 @@
 //! stage imports it.
 
 mod awake_tree;
+mod batching;
 mod bounds_index;
 mod constraint;
 mod contact_batch;
 mod fixed_set;
-mod graph;
 mod joint;
 mod manifold;
 
 pub(crate) use awake_tree::AwakeTree;
+pub(crate) use batching::{ContactBatches, LANES, NO_CONTACT, SolveStep, moved_by_contacts};
 pub(crate) use constraint::{
     Anchoring, AngularRow, ConstraintPoint, ContactConstraint, ContactParams, NO_ROLL, RollingArms,
     body, row_velocity, store,
 };
 pub(crate) use contact_batch::{ContactBatch, PointLanes};
 pub(crate) use fixed_set::FixedSet;
-pub(crate) use graph::{ConstraintGraph, LANES, NO_CONTACT, moved_by_contacts};
 pub(crate) use joint::{JointConstraint, JointRows, ordered_pair};
 pub(crate) use manifold::{MAX_POINTS, Manifold};
 

@@ -12,14 +12,16 @@ mod wide;
 #[cfg(test)]
 mod wide_tests;
 
+use std::ops::Range;
+
 use bevy::prelude::*;
 
 use crate::effects::Effects;
 use crate::math::{FreeStep, Inertial, Softness, free_substep, rotate};
 use crate::settings::{Gravity, Integrator, SolverSettings};
 use crate::world::{
-    ConstraintGraph, ContactConstraint, ContactParams, PhysicsWorld, STATIC, is_isotropic,
-    world_inv_inertia,
+    ContactBatches, ContactConstraint, ContactParams, PhysicsWorld, RollingArms, STATIC, SolveStep,
+    SolverBody, is_isotropic, world_inv_inertia,
 };
 
 pub use contact::{prepare_constraints, refresh_rows, sum_impulses};
@@ -28,7 +30,7 @@ pub use iterate::{apply_restitution, solve_listed, stop_approach, warm_start_lis
 use joint::{solve_joints, store_joint_forces, warm_start_joints};
 use stiffness::{JOINT_DAMPING_RATIO, joint_hertz};
 pub use stiffness::{pair_size, substeps_for, wanted_hertz};
-pub use wide::{solve_batches, warm_start_batches};
+pub use wide::{SharedBodies, solve_batches, warm_start_batches};
 
 /// The solver's stages in execution order. `PrepareContacts` runs once per step; the
 /// five substep stages run `substeps` times; `Restitution` and `StoreImpulses` once.
@@ -63,8 +65,8 @@ pub struct SolverScratch {
     refresh: bool,
     /// Some constraint reports its impulses (a collider with collision events).
     report: bool,
-    /// This step's contacts coloured into batches solved side by side.
-    graph: ConstraintGraph,
+    /// This step's contacts packed into batches solved side by side.
+    batches: ContactBatches,
 }
 
 /// Solves every contact of this step.
@@ -149,7 +151,7 @@ pub fn solve_contacts(
             sum_impulses(&world.constraints, &mut world.manifolds);
         }
     }
-    scratch.graph.write_back(&mut world.constraints);
+    scratch.batches.write_back(&mut world.constraints);
     if effects.restitution {
         run(SolverStage::Restitution, world, scratch);
     }
@@ -199,7 +201,7 @@ fn run_stage(
             scratch.refresh = world.constraints.iter().any(|c| c.refresh);
             scratch.report = world.constraints.iter().any(|c| c.report);
             let fixed = scratch.fixed_constraints;
-            scratch.graph.build(&world.constraints, bodies, fixed);
+            scratch.batches.build(&world.constraints, bodies, fixed);
         }
         SolverStage::IntegrateVelocities => {
             scratch.free.clear();
@@ -217,9 +219,8 @@ fn run_stage(
         }
         SolverStage::WarmStart => {
             warm_start_joints(bodies, &world.joints);
-            let graph = &scratch.graph;
-            warm_start_batches(bodies, &graph.batches, &graph.points);
-            warm_start_listed(bodies, &world.constraints, &graph.overflow);
+            let all = 0..scratch.batches.steps.len();
+            warm_start_steps(bodies, &world.constraints, &scratch.batches, all);
         }
         SolverStage::Solve | SolverStage::Relax => {
             let use_bias = stage == SolverStage::Solve;
@@ -229,22 +230,23 @@ fn run_stage(
             // last word on a light body squeezed into it by a heavy one. Measured: ten-high
             // stacks creep 6.9 mm a minute awake (fixed last: 11.3, fixed first only: 7.4),
             // and the property tests find fewer bodies pushed into walls.
-            let fixed = scratch.fixed_constraints;
             for _ in 0..iterations {
                 // Joints first, then contacts (Box2D's order): the contacts have the
                 // last word on what touches.
                 solve_joints(bodies, &mut world.joints, h, use_bias);
                 let (arms, constraints) = (&world.rolling_arms, &mut world.constraints);
-                let graph = &mut scratch.graph;
-                let overflow = &graph.overflow;
-                let fixed_overflow = overflow.partition_point(|&i| (i as usize) < fixed);
-                let points = &mut graph.points;
-                solve_batches(bodies, &graph.batches, points, h, use_bias);
-                solve_listed(bodies, constraints, overflow, arms, h, use_bias);
-                let fixed_batches = &graph.batches[..graph.fixed_batches];
-                solve_batches(bodies, fixed_batches, points, h, use_bias);
-                let overflow = &overflow[..fixed_overflow];
-                solve_listed(bodies, constraints, overflow, arms, h, use_bias);
+                let batches = &mut scratch.batches;
+                let (steps, fixed_steps) = (batches.steps.len(), batches.fixed_steps);
+                solve_steps(bodies, constraints, batches, 0..steps, arms, h, use_bias);
+                solve_steps(
+                    bodies,
+                    constraints,
+                    batches,
+                    0..fixed_steps,
+                    arms,
+                    h,
+                    use_bias,
+                );
             }
         }
         SolverStage::IntegratePositions => {
@@ -276,6 +278,51 @@ fn run_stage(
         SolverStage::StoreImpulses => {
             store_impulses(world);
             store_joint_forces(&mut world.joints, &world.solver_bodies, h);
+        }
+    }
+}
+
+/// Warm starts the contacts of `steps` (see [`SolveStep`]).
+fn warm_start_steps(
+    bodies: &mut [SolverBody],
+    constraints: &[ContactConstraint],
+    batches: &ContactBatches,
+    steps: Range<usize>,
+) {
+    for step in &batches.steps[steps] {
+        match step {
+            SolveStep::Batches(r) => {
+                let points = &batches.points[batches.points_of(r)];
+                warm_start_batches(
+                    SharedBodies::new(bodies),
+                    &batches.batches[r.clone()],
+                    points,
+                );
+            }
+            SolveStep::Scalar(c) => warm_start_listed(bodies, constraints, &[*c]),
+        }
+    }
+}
+
+/// One pass of the contacts of `steps` (see [`SolveStep`]).
+fn solve_steps(
+    bodies: &mut [SolverBody],
+    constraints: &mut [ContactConstraint],
+    batches: &mut ContactBatches,
+    steps: Range<usize>,
+    arms: &[RollingArms],
+    h: f32,
+    use_bias: bool,
+) {
+    for step in &batches.steps[steps] {
+        match step {
+            SolveStep::Batches(r) => {
+                let range = batches.points_of(r);
+                let points = &mut batches.points[range];
+                let shared = SharedBodies::new(bodies);
+                solve_batches(shared, &batches.batches[r.clone()], points, h, use_bias);
+            }
+            SolveStep::Scalar(c) => solve_listed(bodies, constraints, &[*c], arms, h, use_bias),
         }
     }
 }

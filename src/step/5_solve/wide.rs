@@ -5,11 +5,61 @@
 //! contacts lane by lane ([`ContactBatch`]) and gathers its bodies' velocities.
 
 use crate::math::lanes::{F4, Q4, V3, clamp, eq, gt, lanes, le, lt, max, neg, select};
-use crate::world::{
-    ContactBatch, LANES, MAX_POINTS, PointLanes, SolverBody, body, moved_by_contacts,
-};
+use std::marker::PhantomData;
+
+use crate::world::{ContactBatch, LANES, MAX_POINTS, PointLanes, STATIC, SolverBody};
 
 use super::iterate::{NORMAL_SWEEPS, NORMAL_TOL};
+
+/// The solver bodies as the batches read and write them: through a pointer, so that
+/// batches solved at once (on threads, later) could share them. A batch writes only the
+/// velocities of the bodies it moves, which no other batch solved with it touches (the
+/// batching's invariant, checked in debug builds); bodies no contact moves (static,
+/// kinematic) are only read.
+#[derive(Clone, Copy)]
+pub struct SharedBodies<'a> {
+    ptr: *mut SolverBody,
+    len: usize,
+    _bodies: PhantomData<&'a mut [SolverBody]>,
+}
+
+// SAFETY: see the type's doc: batches solved at once write disjoint bodies, and read only
+// bodies that none of them writes.
+unsafe impl Send for SharedBodies<'_> {}
+unsafe impl Sync for SharedBodies<'_> {}
+
+impl<'a> SharedBodies<'a> {
+    pub fn new(bodies: &'a mut [SolverBody]) -> Self {
+        Self {
+            ptr: bodies.as_mut_ptr(),
+            len: bodies.len(),
+            _bodies: PhantomData,
+        }
+    }
+
+    /// Body `i`, or the static body.
+    #[inline(always)]
+    pub fn get(&self, i: u32) -> SolverBody {
+        if i == STATIC {
+            return crate::world::body(&[], STATIC);
+        }
+        assert!((i as usize) < self.len);
+        // SAFETY: in bounds; no batch solved at the same time writes body i.
+        unsafe { self.ptr.add(i as usize).read() }
+    }
+
+    /// Sets body `i`'s velocities (it must be one this batch moves).
+    #[inline(always)]
+    pub fn set_velocity(&self, i: u32, v: bevy::math::Vec3, w: bevy::math::Vec3) {
+        assert!((i as usize) < self.len);
+        // SAFETY: in bounds; only this batch moves body i.
+        unsafe {
+            let b = self.ptr.add(i as usize);
+            (*b).v = v;
+            (*b).w = w;
+        }
+    }
+}
 
 /// One side's bodies of a batch.
 struct BodyLanes {
@@ -22,9 +72,9 @@ struct BodyLanes {
 
 impl BodyLanes {
     #[inline(always)]
-    fn gather(bodies: &[SolverBody], index: [u32; LANES]) -> Self {
-        let (b0, b1) = (body(bodies, index[0]), body(bodies, index[1]));
-        let (b2, b3) = (body(bodies, index[2]), body(bodies, index[3]));
+    fn gather(bodies: SharedBodies, index: [u32; LANES]) -> Self {
+        let (b0, b1) = (bodies.get(index[0]), bodies.get(index[1]));
+        let (b2, b3) = (bodies.get(index[2]), bodies.get(index[3]));
         Self {
             v: V3::gather([b0.v, b1.v, b2.v, b3.v]),
             w: V3::gather([b0.w, b1.w, b2.w, b3.w]),
@@ -36,11 +86,10 @@ impl BodyLanes {
 
     /// Velocities back to the bodies the contacts move.
     #[inline(always)]
-    fn scatter(&self, bodies: &mut [SolverBody], index: [u32; LANES]) {
-        for (l, &i) in index.iter().enumerate() {
-            if moved_by_contacts(bodies, i) {
-                let s = &mut bodies[i as usize];
-                (s.v, s.w) = (self.v.lane(l), self.w.lane(l));
+    fn scatter(&self, bodies: SharedBodies, index: [u32; LANES], moved: [bool; LANES]) {
+        for l in 0..LANES {
+            if moved[l] {
+                bodies.set_velocity(index[l], self.v.lane(l), self.w.lane(l));
             }
         }
     }
@@ -112,17 +161,16 @@ fn apply_tangent(
 }
 
 /// [`warm_start_listed`](super::iterate::warm_start_listed) over the batches.
-pub fn warm_start_batches(
-    bodies: &mut [SolverBody],
-    batches: &[ContactBatch],
-    points: &[PointLanes],
-) {
+/// `points` starts at the first batch's.
+pub fn warm_start_batches(bodies: SharedBodies, batches: &[ContactBatch], points: &[PointLanes]) {
+    let base = batches.first().map_or(0, |b| b.first as usize);
     for c in batches {
         let (mut a, mut b) = (
             BodyLanes::gather(bodies, c.a),
             BodyLanes::gather(bodies, c.b),
         );
-        for p in &points[c.range()] {
+        let range = c.range();
+        for p in &points[range.start - base..range.end - base] {
             let normal = RowLanes::new(&c.inv_inertia, p, c.normal);
             let tangent = [
                 RowLanes::new(&c.inv_inertia, p, c.tangents[0]),
@@ -131,29 +179,33 @@ pub fn warm_start_batches(
             apply_normal(&mut a, &mut b, c.normal, &normal, p.normal_impulse);
             apply_tangent(&mut a, &mut b, &c.tangents, &tangent, p.tangent_impulse);
         }
-        a.scatter(bodies, c.a);
-        b.scatter(bodies, c.b);
+        a.scatter(bodies, c.a, c.moved[0]);
+        b.scatter(bodies, c.b, c.moved[1]);
     }
 }
 
 /// [`solve_listed`](super::iterate::solve_listed) over the batches (contacts without a
 /// rolling motion).
+/// `points` starts at the first batch's.
 pub fn solve_batches(
-    bodies: &mut [SolverBody],
+    bodies: SharedBodies,
     batches: &[ContactBatch],
     points: &mut [PointLanes],
     h: f32,
     use_bias: bool,
 ) {
     let inv_h = F4::splat(1.0 / h);
+    let base = batches.first().map_or(0, |b| b.first as usize);
     for c in batches {
-        solve_batch(bodies, c, &mut points[c.range()], inv_h, use_bias);
+        let range = c.range();
+        let points = &mut points[range.start - base..range.end - base];
+        solve_batch(bodies, c, points, inv_h, use_bias);
     }
 }
 
 #[inline(always)]
 fn solve_batch(
-    bodies: &mut [SolverBody],
+    bodies: SharedBodies,
     c: &ContactBatch,
     point: &mut [PointLanes],
     inv_h: F4,
@@ -250,6 +302,6 @@ fn solve_batch(
         p.tangent_impulse = [select(on, new0, old0), select(on, new1, old1)];
         apply_tangent(&mut a, &mut b, &c.tangents, &tangent, d);
     }
-    a.scatter(bodies, c.a);
-    b.scatter(bodies, c.b);
+    a.scatter(bodies, c.a, c.moved[0]);
+    b.scatter(bodies, c.b, c.moved[1]);
 }
