@@ -223,13 +223,35 @@ pub(super) fn validate_center_of_mass(
     }
 }
 
+/// A mass or principal inertia the solver can invert: finite, positive, with a finite
+/// reciprocal.
+#[inline(always)]
+fn invertible(x: f32) -> bool {
+    x.is_finite() && x > 0.0 && x.recip().is_finite()
+}
+
+/// Every dynamic body's mass properties, every step: one test, and the message only
+/// for a body that fails it (out of line, as [`check_body`] does).
 #[inline]
 pub(super) fn validate_mass_properties(
     mass: f32,
     inertia: Vec3,
+    given: (bool, bool),
+) -> Result<(), (&'static str, String)> {
+    if invertible(mass) & invertible(inertia.x) & invertible(inertia.y) & invertible(inertia.z) {
+        return Ok(());
+    }
+    mass_properties_error(mass, inertia, given)
+}
+
+#[cold]
+#[inline(never)]
+fn mass_properties_error(
+    mass: f32,
+    inertia: Vec3,
     (explicit, explicit_inertia): (bool, bool),
 ) -> Result<(), (&'static str, String)> {
-    let ok = |x: f32| x.is_finite() && x > 0.0 && x.recip().is_finite();
+    let ok = invertible;
     let field = if explicit {
         "Mass"
     } else {
