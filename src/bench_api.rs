@@ -89,3 +89,96 @@ impl SweepAndPrune {
         &self.pairs
     }
 }
+
+/// One contact pass of a real scene's step, batched (SIMD lanes) or one contact at a
+/// time, from the same start: for `benches/contact_pass.rs`.
+pub struct ContactPass {
+    bodies: Vec<crate::world::SolverBody>,
+    constraints: Vec<crate::world::ContactConstraint>,
+    batches: crate::world::ContactBatches,
+    fixed: usize,
+    h: f32,
+}
+
+impl ContactPass {
+    /// The contacts of `scene` after `steps` steps (sleeping off), as the solver had them.
+    pub fn from_scene(scene: &crate::scene::SceneDesc, steps: usize) -> Self {
+        use bevy::time::TimeUpdateStrategy;
+        let mut app = App::new();
+        app.add_plugins((
+            MinimalPlugins,
+            TransformPlugin,
+            crate::TumblePlugin::default(),
+        ))
+        .insert_resource(TimeUpdateStrategy::FixedTimesteps(1));
+        app.update();
+        scene.spawn_into(app.world_mut());
+        app.world_mut()
+            .resource_mut::<crate::effects::Effects>()
+            .sleeping = false;
+        for _ in 0..steps {
+            app.update();
+        }
+        let world = app.world().resource::<crate::PhysicsWorld>();
+        let fixed = |c: &&crate::world::ContactConstraint| {
+            c.a == crate::world::STATIC || c.b == crate::world::STATIC
+        };
+        let fixed = world.constraints.iter().take_while(fixed).count();
+        let (bodies, constraints) = (world.solver_bodies.clone(), world.constraints.clone());
+        let mut batches = crate::world::ContactBatches::default();
+        batches.build(&constraints, &bodies, fixed);
+        Self {
+            bodies,
+            constraints,
+            batches,
+            fixed,
+            h: world.dt / world.substeps().max(1) as f32,
+        }
+    }
+
+    /// Contacts in the pass.
+    pub fn contacts(&self) -> usize {
+        self.constraints.len()
+    }
+
+    /// Packs the contacts into batches again, from the scene's impulses (once a step in
+    /// the solver).
+    pub fn pack(&mut self) {
+        self.batches
+            .build(&self.constraints, &self.bodies, self.fixed);
+    }
+
+    /// Warm start and one solve pass (the fixed contacts again at its end), batched or
+    /// scalar, on a copy of the bodies; returns their velocities' sum of bits (to compare
+    /// the two and keep the work from being optimised away). The batches keep their
+    /// impulses from run to run ([`pack`](Self::pack) resets them).
+    pub fn run(&mut self, batched: bool) -> u64 {
+        use crate::step::solve::{solve_listed, solve_steps, warm_start_listed, warm_start_steps};
+        let mut bodies = self.bodies.clone();
+        let mut constraints = self.constraints.clone();
+        let (h, n) = (self.h, self.batches.steps.len());
+        if batched {
+            let batches = &mut self.batches;
+            warm_start_steps(&mut bodies, &constraints, batches, 0..n);
+            let fixed = batches.fixed_steps;
+            solve_steps(&mut bodies, &mut constraints, batches, 0..n, &[], h, true);
+            solve_steps(
+                &mut bodies,
+                &mut constraints,
+                batches,
+                0..fixed,
+                &[],
+                h,
+                true,
+            );
+        } else {
+            let all: Vec<u32> = (0..constraints.len() as u32).collect();
+            warm_start_listed(&mut bodies, &constraints, &all);
+            solve_listed(&mut bodies, &mut constraints, &all, &[], h, true);
+            let fixed = &all[..self.fixed];
+            solve_listed(&mut bodies, &mut constraints, fixed, &[], h, true);
+        }
+        let bits = |v: Vec3| v.to_array().iter().map(|x| x.to_bits() as u64).sum::<u64>();
+        bodies.iter().map(|b| bits(b.v) + bits(b.w)).sum()
+    }
+}

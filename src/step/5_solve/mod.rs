@@ -283,7 +283,7 @@ fn run_stage(
 }
 
 /// Warm starts the contacts of `steps` (see [`SolveStep`]).
-fn warm_start_steps(
+pub(crate) fn warm_start_steps(
     bodies: &mut [SolverBody],
     constraints: &[ContactConstraint],
     batches: &ContactBatches,
@@ -305,7 +305,7 @@ fn warm_start_steps(
 }
 
 /// One pass of the contacts of `steps` (see [`SolveStep`]).
-fn solve_steps(
+pub(crate) fn solve_steps(
     bodies: &mut [SolverBody],
     constraints: &mut [ContactConstraint],
     batches: &mut ContactBatches,
