@@ -1,11 +1,12 @@
 //! Batching: the contacts of a step packed into [`ContactBatch`]es of [`LANES`]
 //! contacts that share no moved body, solved side by side, without changing what the
-//! scalar Gauss–Seidel pass computes. Every body still sees its contacts in contact order:
-//! a contact joins a batch only if no contact before it that is still waiting shares one
-//! of its bodies. Contacts apart in the order but not in their bodies (the rows of a
-//! pyramid) then share batches; a body's contacts stay in sequence. The result is the
-//! scalar pass's bit for bit (the reordered updates touch different bodies), so the
-//! order that makes stacks converge (fixed contacts first, then contact order) stays.
+//! scalar Gauss–Seidel pass computes. Every body still meets its contacts in contact
+//! order: contacts go by levels, a contact's level one more than that of the last
+//! contact before it on either of its bodies, and a level's contacts share no body. A
+//! contact's result depends only on its two bodies as the contacts before it on them
+//! left them, so this order (any order that keeps each body's sequence) gives the scalar
+//! pass's bits, and the order that makes stacks converge (fixed contacts first, then
+//! contact order) stays what the physics sees.
 //!
 //! (Box2D v3 colours its contacts instead, which also lets threads split a colour; that
 //! order propagates a stack's load one level per colour, and our 100-high flat pyramid's
@@ -21,11 +22,6 @@ use super::{ContactBatch, ContactConstraint, PointLanes, STATIC, SolverBody};
 pub(crate) const LANES: usize = 4;
 /// A batch lane without a contact.
 pub(crate) const NO_CONTACT: u32 = u32::MAX;
-/// Waiting contacts a batch may look ahead over for independent ones. Measured on the
-/// 5,050-cube flat pyramid, whose rows chain their cubes' contacts (solve ms, interleaved
-/// runs): 64 → 61–72, 256 → 47–52, the scalar pass 68–82.
-pub(crate) const WINDOW: usize = 256;
-
 /// One step of a pass, in order.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) enum SolveStep {
@@ -48,10 +44,14 @@ pub(crate) struct ContactBatches {
     /// How many steps, at the front, are those of the contacts with fixed colliders
     /// (which each pass runs again at its end).
     pub fixed_steps: usize,
-    /// Per body: the last batch that took it or that it waits for (scratch).
+    /// Per body: one more than the level of its last contact (scratch).
     stamp: Vec<u32>,
-    /// Per contact of the part being packed: the next waiting one (scratch).
-    next: Vec<u32>,
+    /// Per contact of the part being packed: its level (scratch).
+    level: Vec<u32>,
+    /// Where each level starts in `order` (scratch).
+    start: Vec<u32>,
+    /// The part's contacts by level (scratch).
+    order: Vec<u32>,
 }
 
 /// Whether the solver moves body `i`: a dynamic body (a kinematic one has no inverse
@@ -90,6 +90,11 @@ impl ContactBatches {
         debug_assert!(self.is_valid(constraints, bodies), "a batch shares a body");
     }
 
+    /// Packs one part by levels: a contact's level is one more than the highest level
+    /// of the contacts before it on either of its moved bodies, so each body meets its
+    /// contacts level after level in contact order, and the contacts of one level share
+    /// no moved body. Each level is cut into batches in contact order; its scalar
+    /// contacts follow its batches. Linear in the contacts.
     fn pack(
         &mut self,
         constraints: &[ContactConstraint],
@@ -97,71 +102,70 @@ impl ContactBatches {
         range: Range<usize>,
     ) {
         let moved = |i: u32| moved_by_contacts(bodies, i).then_some(i as usize);
-        let (start, end, first_step) = (range.start, range.end, self.steps.len());
-        // The waiting contacts as a list (each its successor's index, `end` last), so a
-        // batch's look-ahead counts waiting contacts only.
-        self.next.clear();
-        self.next.extend(start as u32 + 1..=end as u32);
-        let mut head = start;
-        while head < end {
-            if scalar_only(&constraints[head]) {
-                self.steps.push(SolveStep::Scalar(head as u32));
-                head = self.next[head - start] as usize;
-                continue;
-            }
-            head = self.pack_batch(constraints, bodies, start, head, &moved);
-            // Runs of batches grow within a part only (the fixed part ends one).
-            let index = self.batches.len() - 1;
-            let open = self.steps.len() > first_step;
-            match self.steps.last_mut() {
-                Some(SolveStep::Batches(r)) if open && r.end == index => r.end += 1,
-                _ => self.steps.push(SolveStep::Batches(index..index + 1)),
-            }
-        }
-    }
-
-    /// One batch from the waiting contacts from `head` on (the first always joins);
-    /// returns the new first waiting contact.
-    fn pack_batch(
-        &mut self,
-        constraints: &[ContactConstraint],
-        bodies: &[SolverBody],
-        start: usize,
-        mut head: usize,
-        moved: &impl Fn(u32) -> Option<usize>,
-    ) -> usize {
-        // Stamps: `id` for a body this batch takes, `id + 1` for one that a waiting
-        // contact before holds (that contact keeps its turn on it); older stamps are
-        // smaller, so nothing is cleared between batches.
-        let id = 2 * (self.batches.len() as u32 + 1);
-        let end = start + self.next.len();
-        let (mut lanes, mut n) = ([NO_CONTACT; LANES], 0);
-        let (mut k, mut before, mut looked) = (head, None::<usize>, 0);
-        while k < end && looked < WINDOW && n < LANES {
-            let after = self.next[k - start] as usize;
-            let c = &constraints[k];
+        // Per body: one more than the level of its last contact in this part (0: none).
+        self.stamp.iter_mut().for_each(|s| *s = 0);
+        self.level.clear();
+        let mut levels = 0;
+        for c in &constraints[range.clone()] {
             let sides = [moved(c.a), moved(c.b)];
-            if scalar_only(c) || sides.iter().flatten().any(|&i| self.stamp[i] >= id) {
-                for i in sides.into_iter().flatten() {
-                    self.stamp[i] = self.stamp[i].max(id + 1);
-                }
-                before = Some(k);
-            } else {
-                for i in sides.into_iter().flatten() {
-                    self.stamp[i] = id;
-                }
-                lanes[n] = k as u32;
+            let level = sides
+                .iter()
+                .flatten()
+                .map(|&i| self.stamp[i])
+                .max()
+                .unwrap_or(0);
+            for i in sides.into_iter().flatten() {
+                self.stamp[i] = level + 1;
+            }
+            self.level.push(level);
+            levels = levels.max(level as usize + 1);
+        }
+        // Contacts by level, in contact order within each (a counting sort).
+        self.start.clear();
+        self.start.resize(levels + 1, 0);
+        for &l in &self.level {
+            self.start[l as usize + 1] += 1;
+        }
+        for l in 0..levels {
+            self.start[l + 1] += self.start[l];
+        }
+        self.order.clear();
+        self.order.resize(self.level.len(), 0);
+        let mut fill = self.start.clone();
+        for (k, &l) in self.level.iter().enumerate() {
+            self.order[fill[l as usize] as usize] = (range.start + k) as u32;
+            fill[l as usize] += 1;
+        }
+        for l in 0..levels {
+            let contacts = &self.order[self.start[l] as usize..self.start[l + 1] as usize];
+            let first = self.batches.len();
+            let mut lanes = [NO_CONTACT; LANES];
+            let mut n = 0;
+            for &c in contacts
+                .iter()
+                .filter(|&&c| !scalar_only(&constraints[c as usize]))
+            {
+                lanes[n] = c;
                 n += 1;
-                match before {
-                    None => head = after,
-                    Some(b) => self.next[b - start] = after as u32,
+                if n == LANES {
+                    let batch = ContactBatch::new(constraints, bodies, lanes, &mut self.points);
+                    self.batches.push(batch);
+                    (lanes, n) = ([NO_CONTACT; LANES], 0);
                 }
             }
-            (k, looked) = (after, looked + 1);
+            if n > 0 {
+                let batch = ContactBatch::new(constraints, bodies, lanes, &mut self.points);
+                self.batches.push(batch);
+            }
+            if self.batches.len() > first {
+                self.steps
+                    .push(SolveStep::Batches(first..self.batches.len()));
+            }
+            let scalar = contacts
+                .iter()
+                .filter(|&&c| scalar_only(&constraints[c as usize]));
+            self.steps.extend(scalar.map(|&c| SolveStep::Scalar(c)));
         }
-        let batch = ContactBatch::new(constraints, bodies, lanes, &mut self.points);
-        self.batches.push(batch);
-        head
     }
 
     /// The batches' points, for a range of batches.
