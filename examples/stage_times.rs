@@ -8,7 +8,6 @@
 //! ```
 
 use bevy::prelude::*;
-use bevy::time::TimeUpdateStrategy;
 use tumble::prelude::*;
 use tumble::scene::SceneDesc;
 use tumble::timings::STAGES;
@@ -32,11 +31,7 @@ fn main() {
         eprintln!("{e}");
         std::process::exit(1);
     });
-    let mut app = App::new();
-    app.add_plugins((MinimalPlugins, TransformPlugin, TumblePlugin::default()))
-        .insert_resource(TimeUpdateStrategy::FixedTimesteps(1));
-    app.update();
-    let bodies = scene.spawn_into(app.world_mut());
+    let (mut app, bodies) = scene.headless_app();
     let position = |app: &App, e: Entity| app.world().get::<Transform>(e).map(|t| t.translation);
     let start: Vec<_> = bodies.iter().map(|&e| position(&app, e)).collect();
     app.world_mut().resource_mut::<Effects>().sleeping = false;

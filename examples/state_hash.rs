@@ -6,8 +6,6 @@
 //! cargo run --release --example state_hash -- assets/scenes/4_mixed_masses.scene.ron 600
 //! ```
 
-use bevy::prelude::*;
-use bevy::time::TimeUpdateStrategy;
 use tumble::prelude::*;
 use tumble::scene::SceneDesc;
 use tumble::state_hash::state_hash;
@@ -23,11 +21,7 @@ fn main() {
         eprintln!("{e}");
         std::process::exit(1);
     });
-    let mut app = App::new();
-    app.add_plugins((MinimalPlugins, TransformPlugin, TumblePlugin::default()))
-        .insert_resource(TimeUpdateStrategy::FixedTimesteps(1));
-    app.update();
-    scene.spawn_into(app.world_mut());
+    let (mut app, _) = scene.headless_app();
     while app.world().resource::<PhysicsWorld>().step_count() < steps {
         app.update();
     }

@@ -103,16 +103,7 @@ pub struct ContactPass {
 impl ContactPass {
     /// The contacts of `scene` after `steps` steps (sleeping off), as the solver had them.
     pub fn from_scene(scene: &crate::scene::SceneDesc, steps: usize) -> Self {
-        use bevy::time::TimeUpdateStrategy;
-        let mut app = App::new();
-        app.add_plugins((
-            MinimalPlugins,
-            TransformPlugin,
-            crate::TumblePlugin::default(),
-        ))
-        .insert_resource(TimeUpdateStrategy::FixedTimesteps(1));
-        app.update();
-        scene.spawn_into(app.world_mut());
+        let (mut app, _) = scene.headless_app();
         app.world_mut()
             .resource_mut::<crate::effects::Effects>()
             .sleeping = false;

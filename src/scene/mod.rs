@@ -155,6 +155,23 @@ impl SceneDesc {
         world.flush();
         ids
     }
+
+    /// A headless app with this scene in it: MinimalPlugins, TransformPlugin and
+    /// TumblePlugin, exactly one fixed step per `update()`, the plugin started (one
+    /// update run) before the scene is spawned. Returns the app and the scene's bodies,
+    /// in the file's order (the examples' and benches' one builder).
+    pub fn headless_app(&self) -> (App, Vec<Entity>) {
+        let mut app = App::new();
+        app.add_plugins((
+            MinimalPlugins,
+            TransformPlugin,
+            crate::TumblePlugin::default(),
+        ))
+        .insert_resource(bevy::time::TimeUpdateStrategy::FixedTimesteps(1));
+        app.update();
+        let bodies = self.spawn_into(app.world_mut());
+        (app, bodies)
+    }
 }
 
 fn plane_bundle(p: &PlaneDesc) -> impl Bundle {

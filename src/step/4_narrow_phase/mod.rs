@@ -230,8 +230,6 @@ fn closing_speed(world: &PhysicsWorld, c: &ColliderEntry) -> f32 {
 
 #[cfg(test)]
 mod tests {
-    use bevy::time::TimeUpdateStrategy;
-
     use super::*;
     use crate::scene::SceneDesc;
 
@@ -239,16 +237,8 @@ mod tests {
     /// into runs must find what one run does, in the same order.
     #[test]
     fn runs_of_pairs_join_to_the_whole() {
-        let mut app = App::new();
-        app.add_plugins((
-            MinimalPlugins,
-            TransformPlugin,
-            crate::TumblePlugin::default(),
-        ))
-        .insert_resource(TimeUpdateStrategy::FixedTimesteps(1));
-        app.update();
         let scene = SceneDesc::load("assets/scenes/9_rain.scene.ron").unwrap();
-        scene.spawn_into(app.world_mut());
+        let (mut app, _) = scene.headless_app();
         for _ in 0..90 {
             app.update();
         }
