@@ -26,8 +26,12 @@ fn main() {
     ] {
         let scene = SceneDesc::load(root.join(file)).expect("scene file");
         let mut pass = ContactPass::from_scene(&scene, 60);
-        let batched = pass.run(true);
-        assert_eq!(batched, pass.run(false), "{file}: the passes differ");
+        pass.run(true);
+        let batched = pass.velocity_bits();
+        pass.reset();
+        pass.run(false);
+        assert!(batched == pass.velocity_bits(), "{file}: the passes differ");
+        pass.reset();
         let mut times = [Vec::new(), Vec::new()];
         let mut packing = Vec::new();
         for _ in 0..ROUNDS {
@@ -39,7 +43,8 @@ fn main() {
             for (batched, t) in [false, true].into_iter().zip(&mut times) {
                 let start = Instant::now();
                 for _ in 0..PASSES {
-                    std::hint::black_box(pass.run(batched));
+                    pass.run(batched);
+                    std::hint::black_box(&pass);
                 }
                 t.push(start.elapsed().as_secs_f64() * 1e6 / PASSES as f64);
             }

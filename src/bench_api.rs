@@ -91,8 +91,14 @@ impl SweepAndPrune {
 }
 
 /// One contact pass of a real scene's step, batched (SIMD lanes) or one contact at a
-/// time, from the same start: for `benches/contact_pass.rs`.
+/// time: for `benches/contact_pass.rs`.
 pub struct ContactPass {
+    /// The bodies and contacts as the solver had them.
+    start: (
+        Vec<crate::world::SolverBody>,
+        Vec<crate::world::ContactConstraint>,
+    ),
+    /// The ones the passes work on.
     bodies: Vec<crate::world::SolverBody>,
     constraints: Vec<crate::world::ContactConstraint>,
     batches: crate::world::ContactBatches,
@@ -116,15 +122,16 @@ impl ContactPass {
         };
         let fixed = world.constraints.iter().take_while(fixed).count();
         let (bodies, constraints) = (world.solver_bodies.clone(), world.constraints.clone());
-        let mut batches = crate::world::ContactBatches::default();
-        batches.build(&constraints, &bodies, fixed);
-        Self {
+        let mut pass = Self {
+            start: (bodies.clone(), constraints.clone()),
             bodies,
             constraints,
-            batches,
+            batches: crate::world::ContactBatches::default(),
             fixed,
             h: world.dt / world.substeps().max(1) as f32,
-        }
+        };
+        pass.pack();
+        pass
     }
 
     /// Contacts in the pass.
@@ -132,44 +139,47 @@ impl ContactPass {
         self.constraints.len()
     }
 
-    /// Packs the contacts into batches again, from the scene's impulses (once a step in
-    /// the solver).
+    /// Packs the contacts into batches (once a step in the solver).
     pub fn pack(&mut self) {
         self.batches
             .build(&self.constraints, &self.bodies, self.fixed);
     }
 
     /// Warm start and one solve pass (the fixed contacts again at its end), batched or
-    /// scalar, on a copy of the bodies; returns their velocities' sum of bits (to compare
-    /// the two and keep the work from being optimised away). The batches keep their
-    /// impulses from run to run ([`pack`](Self::pack) resets them).
-    pub fn run(&mut self, batched: bool) -> u64 {
+    /// scalar, on the working bodies and contacts (which carry over from run to run).
+    pub fn run(&mut self, batched: bool) {
         use crate::step::solve::{solve_listed, solve_steps, warm_start_listed, warm_start_steps};
-        let mut bodies = self.bodies.clone();
-        let mut constraints = self.constraints.clone();
-        let (h, n) = (self.h, self.batches.steps.len());
+        let (bodies, constraints) = (&mut self.bodies, &mut self.constraints);
+        let h = self.h;
         if batched {
+            let n = self.batches.steps.len();
             let batches = &mut self.batches;
-            warm_start_steps(&mut bodies, &constraints, batches, 0..n);
+            warm_start_steps(bodies, constraints, batches, 0..n);
             let fixed = batches.fixed_steps;
-            solve_steps(&mut bodies, &mut constraints, batches, 0..n, &[], h, true);
-            solve_steps(
-                &mut bodies,
-                &mut constraints,
-                batches,
-                0..fixed,
-                &[],
-                h,
-                true,
-            );
+            solve_steps(bodies, constraints, batches, 0..n, &[], h, true);
+            solve_steps(bodies, constraints, batches, 0..fixed, &[], h, true);
         } else {
             let all: Vec<u32> = (0..constraints.len() as u32).collect();
-            warm_start_listed(&mut bodies, &constraints, &all);
-            solve_listed(&mut bodies, &mut constraints, &all, &[], h, true);
-            let fixed = &all[..self.fixed];
-            solve_listed(&mut bodies, &mut constraints, fixed, &[], h, true);
+            warm_start_listed(bodies, constraints, &all);
+            solve_listed(bodies, constraints, &all, &[], h, true);
+            solve_listed(bodies, constraints, &all[..self.fixed], &[], h, true);
         }
-        let bits = |v: Vec3| v.to_array().iter().map(|x| x.to_bits() as u64).sum::<u64>();
-        bodies.iter().map(|b| bits(b.v) + bits(b.w)).sum()
+    }
+
+    /// The working bodies' velocities, as bits (to compare runs).
+    pub fn velocity_bits(&self) -> Vec<[u32; 6]> {
+        let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+        let both = |b: &crate::world::SolverBody| {
+            let (v, w) = (bits(b.v), bits(b.w));
+            [v[0], v[1], v[2], w[0], w[1], w[2]]
+        };
+        self.bodies.iter().map(both).collect()
+    }
+
+    /// Back to the solver's bodies and contacts, batches packed again.
+    pub fn reset(&mut self) {
+        self.bodies.clone_from(&self.start.0);
+        self.constraints.clone_from(&self.start.1);
+        self.pack();
     }
 }

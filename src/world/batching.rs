@@ -131,11 +131,14 @@ impl ContactBatches {
         }
         self.order.clear();
         self.order.resize(self.level.len(), 0);
-        let mut fill = self.start.clone();
+        // Filled level by level: `start[l]` moves on as level l takes its contacts, and
+        // ends where level l + 1 begins; shifted back after.
         for (k, &l) in self.level.iter().enumerate() {
-            self.order[fill[l as usize] as usize] = (range.start + k) as u32;
-            fill[l as usize] += 1;
+            self.order[self.start[l as usize] as usize] = (range.start + k) as u32;
+            self.start[l as usize] += 1;
         }
+        self.start.copy_within(0..levels, 1);
+        self.start[0] = 0;
         for l in 0..levels {
             let contacts = &self.order[self.start[l] as usize..self.start[l + 1] as usize];
             let first = self.batches.len();

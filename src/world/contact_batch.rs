@@ -63,7 +63,7 @@ pub(crate) struct ContactBatch {
     pub max_push: F4,
     /// All-ones lanes whose contact has more than k points, per k.
     pub has: [F4; MAX_POINTS],
-    /// Where the batch's points start in the graph's point lanes, and how many it has
+    /// Where the batch's points start in the batches' point lanes, and how many it has
     /// (the most of any lane).
     pub first: u32,
     pub points: u32,
@@ -183,7 +183,7 @@ impl ContactBatch {
         b
     }
 
-    /// Its point lanes in the graph's.
+    /// Its points' range in the batches' point lanes.
     #[inline(always)]
     pub(crate) fn range(&self) -> std::ops::Range<usize> {
         self.first as usize..(self.first + self.points) as usize

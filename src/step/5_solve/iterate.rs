@@ -55,7 +55,8 @@ fn apply_tangent(
 }
 
 /// Applies last step's accumulated impulses (already in the constraints) of the listed
-/// contacts (the constraint graph's overflow; its batches have their own pass).
+/// contacts (the scalar ones of a step, [`SolveStep::Scalar`](crate::world::SolveStep);
+/// the batched ones have their own pass).
 pub fn warm_start_listed(
     bodies: &mut [SolverBody],
     constraints: &[ContactConstraint],
@@ -68,34 +69,32 @@ pub fn warm_start_listed(
 
 #[inline(always)]
 fn warm_start_one(bodies: &mut [SolverBody], c: &ContactConstraint) {
-    {
-        let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
-        for p in &c.points[..c.len] {
-            apply_normal(
-                &mut a,
-                &mut b,
-                c.normal,
-                &p.normal_row,
-                p.normal_impulse,
-                c.spin,
-            );
-            let tangents = [c.tangent1, c.tangent2];
-            apply_tangent(
-                &mut a,
-                &mut b,
-                tangents,
-                &p.tangent_rows,
-                p.tangent_impulse,
-                c.spin,
-            );
-        }
-        store(bodies, c.a, a);
-        store(bodies, c.b, b);
+    let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
+    for p in &c.points[..c.len] {
+        apply_normal(
+            &mut a,
+            &mut b,
+            c.normal,
+            &p.normal_row,
+            p.normal_impulse,
+            c.spin,
+        );
+        let tangents = [c.tangent1, c.tangent2];
+        apply_tangent(
+            &mut a,
+            &mut b,
+            tangents,
+            &p.tangent_rows,
+            p.tangent_impulse,
+            c.spin,
+        );
     }
+    store(bodies, c.a, a);
+    store(bodies, c.b, b);
 }
 
-/// One Gauss–Seidel pass over the listed contacts (the constraint graph's overflow; its
-/// batches have their own pass, lane by lane the same as this): for each manifold, the
+/// One Gauss–Seidel pass over the listed contacts (the scalar ones of a step; the batched
+/// ones have their own pass, lane by lane the same as this): for each manifold, the
 /// normal rows of all its points (soft with bias, or rigid when relaxing), then the
 /// friction disc of each point clamped to μ·λn with the updated normal impulses.
 /// Accumulated impulses are clamped, never increments. Speculative points (s > 0) may

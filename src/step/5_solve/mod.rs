@@ -30,7 +30,7 @@ pub use iterate::{apply_restitution, solve_listed, stop_approach, warm_start_lis
 use joint::{solve_joints, store_joint_forces, warm_start_joints};
 use stiffness::{JOINT_DAMPING_RATIO, joint_hertz};
 pub use stiffness::{pair_size, substeps_for, wanted_hertz};
-pub use wide::{SharedBodies, solve_batches, warm_start_batches};
+pub use wide::{solve_batches, warm_start_batches};
 
 /// The solver's stages in execution order. `PrepareContacts` runs once per step; the
 /// five substep stages run `substeps` times; `Restitution` and `StoreImpulses` once.
@@ -53,8 +53,6 @@ pub struct SolverScratch {
     active: Vec<u32>,
     /// Each active body's free motion for the current substep.
     free: Vec<FreeStep>,
-    /// Solve and relax passes per substep this step.
-    iterations: u32,
     /// Per body: how many of its manifolds overlap (for the push-out share).
     overlaps: Vec<u32>,
     /// Per body: the heaviest body it has a manifold with.
@@ -174,7 +172,7 @@ fn run_stage(
     let _span = trace_span!("tumble::solve", stage = ?stage).entered();
     let h = params.h;
     let bodies = &mut world.solver_bodies;
-    let iterations = scratch.iterations;
+    let iterations = world.iterations;
     match stage {
         SolverStage::PrepareContacts => {
             let stiffness = *params;
@@ -196,8 +194,7 @@ fn run_stage(
                 let (wanted, _) = joint_hertz(j, bodies, &stiffness);
                 j.softness = Softness::new(wanted.min(stiffness.max_hertz), JOINT_DAMPING_RATIO, h);
             }
-            scratch.iterations = iterations_for(settings.iterations, ratio);
-            world.iterations = scratch.iterations;
+            world.iterations = iterations_for(settings.iterations, ratio);
             scratch.refresh = world.constraints.iter().any(|c| c.refresh);
             scratch.report = world.constraints.iter().any(|c| c.report);
             let fixed = scratch.fixed_constraints;
@@ -293,11 +290,7 @@ pub(crate) fn warm_start_steps(
         match step {
             SolveStep::Batches(r) => {
                 let points = &batches.points[batches.points_of(r)];
-                warm_start_batches(
-                    SharedBodies::new(bodies),
-                    &batches.batches[r.clone()],
-                    points,
-                );
+                warm_start_batches(bodies, &batches.batches[r.clone()], points);
             }
             SolveStep::Scalar(c) => warm_start_listed(bodies, constraints, &[*c]),
         }
@@ -319,8 +312,7 @@ pub(crate) fn solve_steps(
             SolveStep::Batches(r) => {
                 let range = batches.points_of(r);
                 let points = &mut batches.points[range];
-                let shared = SharedBodies::new(bodies);
-                solve_batches(shared, &batches.batches[r.clone()], points, h, use_bias);
+                solve_batches(bodies, &batches.batches[r.clone()], points, h, use_bias);
             }
             SolveStep::Scalar(c) => solve_listed(bodies, constraints, &[*c], arms, h, use_bias),
         }

@@ -1,65 +1,13 @@
-//! The contact passes over the constraint graph's batches: four contacts that share no
-//! moved body, solved side by side in `f32x4` lanes. Each lane does exactly what
+//! The contact passes over the batches (see [`ContactBatches`](crate::world::ContactBatches)):
+//! four contacts that share no moved body, solved side by side in `f32x4` lanes. Each lane does exactly what
 //! [`iterate`](super::iterate) does for one contact, in the same order (the scalar pass
 //! stays as the reference these are tested against, bit for bit). A batch holds its
 //! contacts lane by lane ([`ContactBatch`]) and gathers its bodies' velocities.
 
 use crate::math::lanes::{F4, Q4, V3, clamp, eq, gt, lanes, le, lt, max, neg, select};
-use std::marker::PhantomData;
-
-use crate::world::{ContactBatch, LANES, MAX_POINTS, PointLanes, STATIC, SolverBody};
+use crate::world::{ContactBatch, LANES, MAX_POINTS, PointLanes, SolverBody, body};
 
 use super::iterate::{NORMAL_SWEEPS, NORMAL_TOL};
-
-/// The solver bodies as the batches read and write them: through a pointer, so that
-/// batches solved at once (on threads, later) could share them. A batch writes only the
-/// velocities of the bodies it moves, which no other batch solved with it touches (the
-/// batching's invariant, checked in debug builds); bodies no contact moves (static,
-/// kinematic) are only read.
-#[derive(Clone, Copy)]
-pub struct SharedBodies<'a> {
-    ptr: *mut SolverBody,
-    len: usize,
-    _bodies: PhantomData<&'a mut [SolverBody]>,
-}
-
-// SAFETY: see the type's doc: batches solved at once write disjoint bodies, and read only
-// bodies that none of them writes.
-unsafe impl Send for SharedBodies<'_> {}
-unsafe impl Sync for SharedBodies<'_> {}
-
-impl<'a> SharedBodies<'a> {
-    pub fn new(bodies: &'a mut [SolverBody]) -> Self {
-        Self {
-            ptr: bodies.as_mut_ptr(),
-            len: bodies.len(),
-            _bodies: PhantomData,
-        }
-    }
-
-    /// Body `i`, or the static body.
-    #[inline(always)]
-    pub fn get(&self, i: u32) -> SolverBody {
-        if i == STATIC {
-            return crate::world::body(&[], STATIC);
-        }
-        assert!((i as usize) < self.len);
-        // SAFETY: in bounds; no batch solved at the same time writes body i.
-        unsafe { self.ptr.add(i as usize).read() }
-    }
-
-    /// Sets body `i`'s velocities (it must be one this batch moves).
-    #[inline(always)]
-    pub fn set_velocity(&self, i: u32, v: bevy::math::Vec3, w: bevy::math::Vec3) {
-        assert!((i as usize) < self.len);
-        // SAFETY: in bounds; only this batch moves body i.
-        unsafe {
-            let b = self.ptr.add(i as usize);
-            (*b).v = v;
-            (*b).w = w;
-        }
-    }
-}
 
 /// One side's bodies of a batch.
 struct BodyLanes {
@@ -72,9 +20,9 @@ struct BodyLanes {
 
 impl BodyLanes {
     #[inline(always)]
-    fn gather(bodies: SharedBodies, index: [u32; LANES]) -> Self {
-        let (b0, b1) = (bodies.get(index[0]), bodies.get(index[1]));
-        let (b2, b3) = (bodies.get(index[2]), bodies.get(index[3]));
+    fn gather(bodies: &[SolverBody], index: [u32; LANES]) -> Self {
+        let (b0, b1) = (body(bodies, index[0]), body(bodies, index[1]));
+        let (b2, b3) = (body(bodies, index[2]), body(bodies, index[3]));
         Self {
             v: V3::gather([b0.v, b1.v, b2.v, b3.v]),
             w: V3::gather([b0.w, b1.w, b2.w, b3.w]),
@@ -86,10 +34,11 @@ impl BodyLanes {
 
     /// Velocities back to the bodies the contacts move.
     #[inline(always)]
-    fn scatter(&self, bodies: SharedBodies, index: [u32; LANES], moved: [bool; LANES]) {
+    fn scatter(&self, bodies: &mut [SolverBody], index: [u32; LANES], moved: [bool; LANES]) {
         for l in 0..LANES {
             if moved[l] {
-                bodies.set_velocity(index[l], self.v.lane(l), self.w.lane(l));
+                let b = &mut bodies[index[l] as usize];
+                (b.v, b.w) = (self.v.lane(l), self.w.lane(l));
             }
         }
     }
@@ -162,7 +111,11 @@ fn apply_tangent(
 
 /// [`warm_start_listed`](super::iterate::warm_start_listed) over the batches.
 /// `points` starts at the first batch's.
-pub fn warm_start_batches(bodies: SharedBodies, batches: &[ContactBatch], points: &[PointLanes]) {
+pub fn warm_start_batches(
+    bodies: &mut [SolverBody],
+    batches: &[ContactBatch],
+    points: &[PointLanes],
+) {
     let base = batches.first().map_or(0, |b| b.first as usize);
     for c in batches {
         let (mut a, mut b) = (
@@ -188,7 +141,7 @@ pub fn warm_start_batches(bodies: SharedBodies, batches: &[ContactBatch], points
 /// rolling motion).
 /// `points` starts at the first batch's.
 pub fn solve_batches(
-    bodies: SharedBodies,
+    bodies: &mut [SolverBody],
     batches: &[ContactBatch],
     points: &mut [PointLanes],
     h: f32,
@@ -205,7 +158,7 @@ pub fn solve_batches(
 
 #[inline(always)]
 fn solve_batch(
-    bodies: SharedBodies,
+    bodies: &mut [SolverBody],
     c: &ContactBatch,
     point: &mut [PointLanes],
     inv_h: F4,
