@@ -5,6 +5,9 @@
 //! use them; neither imports the other.
 
 mod ballistic;
+pub(crate) mod block_ldl;
+#[cfg(test)]
+mod block_ldl_tests;
 mod explicit_euler;
 mod frames;
 mod gyroscopic;

@@ -77,6 +77,10 @@ pub(crate) struct JointConstraint {
     pub torque_load: Vec3,
     /// The length its allowed sag is a fraction of, m: its longest arm or its length.
     pub size: f32,
-    /// Its soft-step coefficients this step (set by the solver).
+    /// Its soft-step coefficients this step (set by the solver): of its limits, motor
+    /// and spring rows (Gauss–Seidel, capped at a quarter of the substep rate) ...
     pub softness: Softness,
+    /// ... and of the rows that hold it together, solved at once and exactly (capped at
+    /// twice the substep rate: see `joint_direct`).
+    pub held: Softness,
 }

@@ -163,6 +163,7 @@ pub fn prepare_joints(
                 .max(b.arm.length())
                 .max(length_of(&joint.kind)),
             softness: Softness::new(0.0, 0.0, 1.0),
+            held: Softness::new(0.0, 0.0, 1.0),
         });
         if !joint.collide_connected
             && let Some(body1) = joint.body1

@@ -17,14 +17,14 @@ use crate::world::{JointConstraint, JointRows, SolverBody, body, store};
 
 /// The joint's geometry now: anchors from the centres of mass, the offset from anchor A
 /// to anchor B (the point error), and the axis, all world frame.
-struct Now {
-    ra: Vec3,
-    rb: Vec3,
-    d: Vec3,
-    axis: Vec3,
+pub(super) struct Now {
+    pub ra: Vec3,
+    pub rb: Vec3,
+    pub d: Vec3,
+    pub axis: Vec3,
 }
 
-fn now(j: &JointConstraint, a: &SolverBody, b: &SolverBody) -> Now {
+pub(super) fn now(j: &JointConstraint, a: &SolverBody, b: &SolverBody) -> Now {
     let (ra, rb) = (a.dq * j.ra, b.dq * j.rb);
     Now {
         ra,
@@ -74,7 +74,7 @@ fn inv(k: f32) -> f32 {
 }
 
 /// B's rotation error relative to A as a rotation vector, rad (zero at rest).
-fn rotation_error(j: &JointConstraint, a: &SolverBody, b: &SolverBody) -> (Quat, Vec3) {
+pub(super) fn rotation_error(j: &JointConstraint, a: &SolverBody, b: &SolverBody) -> (Quat, Vec3) {
     let mut q = (b.dq * j.rest * a.dq.inverse()).normalize();
     if q.w < 0.0 {
         q = -q;
@@ -138,12 +138,14 @@ pub fn warm_start_joints(bodies: &mut [SolverBody], joints: &[JointConstraint]) 
 }
 
 /// One pass over the joints: with `use_bias`, toward closing their errors (soft);
-/// without, rigidly on velocities (relax).
+/// without, rigidly on velocities (relax). The equality rows only with `equalities`:
+/// the step solves them together (`joint_direct.rs`); one by one they are its reference.
 pub fn solve_joints(
     bodies: &mut [SolverBody],
     joints: &mut [JointConstraint],
     h: f32,
     use_bias: bool,
+    equalities: bool,
 ) {
     let inv_h = 1.0 / h;
     for j in joints.iter_mut() {
@@ -151,26 +153,36 @@ pub fn solve_joints(
         let f = now(j, &a, &b);
         let softness = j.softness;
         let soft = &softness;
+        let eq = equalities;
         match j.rows {
-            JointRows::Fixed => {
+            JointRows::Fixed if eq => {
                 solve_turns(j, &mut a, &mut b, soft, use_bias);
                 solve_point(j, &mut a, &mut b, &f, soft, use_bias);
             }
+            JointRows::Fixed => continue,
             JointRows::Spherical => {
                 solve_cone_twist(j, &mut a, &mut b, &f, h, soft, use_bias);
-                solve_point(j, &mut a, &mut b, &f, soft, use_bias);
+                if eq {
+                    solve_point(j, &mut a, &mut b, &f, soft, use_bias);
+                }
             }
             JointRows::Revolute => {
                 solve_hinge_axis(j, &mut a, &mut b, &f, h, soft, use_bias);
-                solve_hinge_turns(j, &mut a, &mut b, &f, soft, use_bias);
-                solve_point(j, &mut a, &mut b, &f, soft, use_bias);
+                if eq {
+                    solve_hinge_turns(j, &mut a, &mut b, &f, soft, use_bias);
+                    solve_point(j, &mut a, &mut b, &f, soft, use_bias);
+                }
             }
             JointRows::Prismatic => {
                 solve_slide_axis(j, &mut a, &mut b, &f, h, soft, use_bias);
-                solve_turns(j, &mut a, &mut b, soft, use_bias);
-                solve_slide_across(j, &mut a, &mut b, &f, soft, use_bias);
+                if eq {
+                    solve_turns(j, &mut a, &mut b, soft, use_bias);
+                    solve_slide_across(j, &mut a, &mut b, &f, soft, use_bias);
+                }
             }
-            JointRows::Distance => solve_distance(j, &mut a, &mut b, &f, inv_h, soft, use_bias),
+            JointRows::Distance => {
+                solve_distance(j, &mut a, &mut b, &f, inv_h, soft, use_bias, eq);
+            }
         }
         store(bodies, j.a, a);
         store(bodies, j.b, b);
@@ -415,7 +427,9 @@ fn solve_slide_across(
     apply_linear(a, b, arm_a, f.rb, t1 * l.x + t2 * l.y);
 }
 
-/// The distance between the anchors: rigid, or a spring and limits.
+/// The distance between the anchors: rigid (only with `rigid_too`), or a spring and
+/// limits.
+#[allow(clippy::too_many_arguments)]
 fn solve_distance(
     j: &mut JointConstraint,
     a: &mut SolverBody,
@@ -424,6 +438,7 @@ fn solve_distance(
     inv_h: f32,
     soft: &Softness,
     use_bias: bool,
+    rigid_too: bool,
 ) {
     let length = f.d.length();
     let n = if length > 1e-6 { f.d / length } else { f.axis };
@@ -431,6 +446,9 @@ fn solve_distance(
     let speed = |a: &SolverBody, b: &SolverBody| n.dot(point_velocity(a, b, f.ra, f.rb));
     let (lo, hi) = j.limits.unwrap_or((0.0, f32::INFINITY));
     if lo >= hi {
+        if !rigid_too {
+            return;
+        }
         let (bias, mass_scale, impulse_scale) = bilateral(length - lo, soft, use_bias);
         let l = -mass * mass_scale * (speed(a, b) + bias) - impulse_scale * j.axial[0];
         j.axial[0] += l;

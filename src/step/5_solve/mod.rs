@@ -7,6 +7,9 @@ mod contact;
 mod continuous;
 mod iterate;
 mod joint;
+mod joint_direct;
+#[cfg(test)]
+mod joint_direct_tests;
 mod stiffness;
 mod wide;
 #[cfg(test)]
@@ -28,7 +31,8 @@ pub use contact::{prepare_constraints, refresh_rows, sum_impulses};
 pub use continuous::sweep_against_fixed;
 pub use iterate::{apply_restitution, solve_listed, stop_approach, warm_start_listed};
 use joint::{solve_joints, store_joint_forces, warm_start_joints};
-use stiffness::{JOINT_DAMPING_RATIO, joint_hertz};
+use joint_direct::JointSystem;
+use stiffness::{HELD_MAX_RATE, JOINT_DAMPING_RATIO, MAX_TENSION_TURN, joint_hertz, tension_omega};
 pub use stiffness::{pair_size, substeps_for, wanted_hertz};
 pub use wide::{solve_batches, warm_start_batches};
 
@@ -65,6 +69,10 @@ pub struct SolverScratch {
     report: bool,
     /// This step's contacts packed into batches solved side by side.
     batches: ContactBatches,
+    /// The joints' equality rows, solved together.
+    joints: JointSystem,
+    /// Working space for [`tension_omega`].
+    tension: Vec<(u32, f32)>,
 }
 
 /// Solves every contact of this step.
@@ -106,7 +114,8 @@ pub fn solve_contacts(
     };
     // Last step's impulses were per substep of last step's length: rescale them to this
     // step's substep, then see how stiff the stiffest contact wants to be.
-    let n = choose_substeps(world, &params, min_substeps, settings.max_substeps);
+    let limits = (min_substeps, settings.max_substeps);
+    let n = choose_substeps(world, &params, limits, &mut scratch.tension);
     params.h = dt / n as f32;
     // Stiffness capped at a quarter of the substep rate.
     params.max_hertz = 0.25 / params.h;
@@ -189,10 +198,10 @@ fn run_stage(
                     .all(|c| c.a != STATIC && c.b != STATIC),
                 "contacts with fixed colliders must come first"
             );
-            let ratio = ratio.max(joint_mass_ratio(&world.joints, bodies));
             for j in world.joints.iter_mut() {
                 let (wanted, _) = joint_hertz(j, bodies, &stiffness);
                 j.softness = Softness::new(wanted.min(stiffness.max_hertz), JOINT_DAMPING_RATIO, h);
+                j.held = Softness::new(wanted.min(HELD_MAX_RATE / h), JOINT_DAMPING_RATIO, h);
             }
             world.iterations = iterations_for(settings.iterations, ratio);
             scratch.refresh = world.constraints.iter().any(|c| c.refresh);
@@ -227,10 +236,18 @@ fn run_stage(
             // last word on a light body squeezed into it by a heavy one. Measured: ten-high
             // stacks creep 6.9 mm a minute awake (fixed last: 11.3, fixed first only: 7.4),
             // and the property tests find fewer bodies pushed into walls.
+            let joints = !world.joints.is_empty();
+            if joints {
+                scratch.joints.prepare(bodies, &world.joints, use_bias);
+            }
             for _ in 0..iterations {
                 // Joints first, then contacts (Box2D's order): the contacts have the
-                // last word on what touches.
-                solve_joints(bodies, &mut world.joints, h, use_bias);
+                // last word on what touches. Of the joints, the limits and motors first,
+                // then the rows that hold them together.
+                if joints {
+                    solve_joints(bodies, &mut world.joints, h, use_bias, false);
+                    scratch.joints.solve(bodies, &mut world.joints, use_bias);
+                }
                 let (arms, constraints) = (&world.rolling_arms, &mut world.constraints);
                 let batches = &mut scratch.batches;
                 let (steps, fixed_steps) = (batches.steps.len(), batches.fixed_steps);
@@ -247,12 +264,17 @@ fn run_stage(
             }
         }
         SolverStage::IntegratePositions => {
-            // The free increment plus the contact impulses' share, h·Δv and h·Δω.
+            // The free increment plus the contact impulses' share, h·Δv and h·Δω. A
+            // turning anisotropic body's world inertia turns with it, for the contacts
+            // that ask (`refresh`) and for every joint (a chain's thin links spin fast
+            // about their length, where their inertia is small: held at the step's start
+            // pose, it fed that spin into the swing).
+            let turn_inertia = scratch.refresh || !world.joints.is_empty();
             for (&i, fs) in scratch.active.iter().zip(&scratch.free) {
                 let (b, s) = (&world.bodies[i as usize], &mut bodies[i as usize]);
                 s.dp += fs.dx + h * (s.v - fs.v);
                 s.dq = (rotate(fs.q, s.w - fs.w, h) * b.q0.inverse()).normalize();
-                if scratch.refresh && !is_isotropic(b.inv_inertia) {
+                if turn_inertia && !is_isotropic(b.inv_inertia) {
                     s.inv_inertia = world_inv_inertia(s.dq * b.q0, b.inv_inertia);
                 }
             }
@@ -322,7 +344,12 @@ pub(crate) fn solve_steps(
 /// The substeps this step needs: enough for the stiffest contact's wanted frequency
 /// (see [`stiffness`](self::stiffness)), between the setting and `max`. Loads are read
 /// from last step's impulses, taken per substep of last step's length.
-fn choose_substeps(world: &PhysicsWorld, p: &ContactParams, min: u32, max: u32) -> u32 {
+fn choose_substeps(
+    world: &PhysicsWorld,
+    p: &ContactParams,
+    (min, max): (u32, u32),
+    scratch: &mut Vec<(u32, f32)>,
+) -> u32 {
     if max <= min {
         return min;
     }
@@ -355,10 +382,21 @@ fn choose_substeps(world: &PhysicsWorld, p: &ContactParams, min: u32, max: u32) 
         let wanted = wanted_hertz(p, ima, imb, load, size, resting);
         stiffest = stiffest.max(wanted.needed);
     }
-    for j in &world.joints {
+    // Joints with limits: a soft limit row sags under its load as a contact does. (The
+    // rows that hold a joint together are rigid: see `joint_direct`.)
+    for j in world
+        .joints
+        .iter()
+        .filter(|j| j.limits.is_some() || j.cone.is_some())
+    {
         stiffest = stiffest.max(joint_hertz(j, &world.solver_bodies, p).1);
     }
-    substeps_for(stiffest, world.dt, min, max)
+    let by_contacts = substeps_for(stiffest, world.dt, min, max);
+    // The joints: enough that no taut chain rings faster than the solve follows.
+    let omega = tension_omega(&world.joints, &world.solver_bodies, scratch);
+    let by_joints = (omega * world.dt / MAX_TENSION_TURN).ceil();
+    // A saturating cast, as in `substeps_for`.
+    by_contacts.max((by_joints as u32).clamp(min, max))
 }
 
 /// The most a non-round body in contact may turn in one step, rad (an eighth of a turn,
@@ -383,27 +421,6 @@ pub fn limit_spin(w: Vec3, dt: f32) -> Vec3 {
 pub fn iterations_for(setting: u32, max_ratio: f32) -> u32 {
     let extra = max_ratio.max(1.0).log10().ceil() as u32;
     setting.max(1).max(extra.min(8))
-}
-
-/// The largest mass ratio across a joint between two dynamic bodies (1 when none): a
-/// light link holding a heavy ball needs the passes a heavy stack does.
-fn joint_mass_ratio(
-    joints: &[crate::world::JointConstraint],
-    bodies: &[crate::world::SolverBody],
-) -> f32 {
-    let inv_mass = |i: u32| {
-        if i == STATIC {
-            0.0
-        } else {
-            bodies[i as usize].inv_mass
-        }
-    };
-    joints
-        .iter()
-        .map(|j| (inv_mass(j.a), inv_mass(j.b)))
-        .filter(|&(a, b)| a > 0.0 && b > 0.0)
-        .map(|(a, b)| a.max(b) / a.min(b))
-        .fold(1.0, f32::max)
 }
 
 /// Marks and lists the dynamic and kinematic bodies that any manifold or joint touches.

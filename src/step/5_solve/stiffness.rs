@@ -20,10 +20,10 @@ use std::f32::consts::TAU;
 use crate::collider::Shape;
 
 use crate::math::Softness;
-use bevy::math::Vec3;
+use bevy::math::{Mat3, Vec3};
 
 use super::joint::linear_k;
-use crate::world::{ContactParams, JointConstraint, SolverBody, body};
+use crate::world::{ContactParams, JointConstraint, STATIC, SolverBody, body};
 
 /// The most load, in multiples of the lighter body, that the sag rule reads from a
 /// contact's impulses (its own mass ratio counts in full). A five-high stack of
@@ -120,16 +120,20 @@ pub fn substeps_for(hertz: f32, dt: f32, min: u32, max: u32) -> u32 {
 /// The frequency a joint would like and the one it needs, Hz.
 ///
 /// A soft joint is a stiff spring of k = m_eff·ω² across its rows: carrying a load T it
-/// opens by T/k (and a turn under a torque likewise, by the inertia). Light bodies holding a heavy one (a chain of 0.1 kg links under a 10 kg
-/// ball: m_eff 0.05 kg, T 127 N) open by centimetres at the contacts' frequencies, so
-/// each joint asks for the frequency that holds its opening to `max_sag` of its size:
-/// ω ≥ √(T / (m_eff · max_sag · size)). That one is *needed* (it raises the substeps, as
-/// a heavy stack's contacts do); otherwise a joint wants twice the contact frequency
-/// (Box2D v3's choice) or an eighth of the substep rate, whichever is higher: at a fixed
-/// 60 Hz, finer substeps let the joint's damping work longer on the compliance it leaves
-/// (a pendulum's energy drift grew from −9.9e-5 at 16 substeps to −8.0e-4 at 64; now it
-/// falls, `tests/joint_pendulum.rs`). Both are capped by the caller at a quarter of the
-/// substep rate.
+/// opens by T/k (and a turn under a torque likewise, by the inertia). Light bodies
+/// holding a heavy one (a chain of 0.1 kg links under a 10 kg ball: m_eff 0.05 kg,
+/// T 127 N) open by centimetres at the contacts' frequencies, so each joint asks for the
+/// frequency that holds its opening to `max_sag` of its size:
+/// ω ≥ √(T / (m_eff · max_sag · size)). That one is *needed*; otherwise a joint wants
+/// twice the contact frequency (Box2D v3's choice) or an eighth of the substep rate,
+/// whichever is higher: at a fixed 60 Hz, finer substeps let the joint's damping work
+/// longer on the compliance it leaves (a pendulum's energy drift grew from −9.9e-5 at
+/// 16 substeps to −8.0e-4 at 64; now it falls, `tests/joint_pendulum.rs`).
+///
+/// The rows that hold the joint together take the wanted frequency up to
+/// [`HELD_MAX_RATE`] times the substep rate; its limit rows, solved one by one, up to a
+/// quarter of it, and a limit that needs more raises the substeps, as a heavy stack's
+/// contacts do.
 pub fn joint_hertz(j: &JointConstraint, bodies: &[SolverBody], p: &ContactParams) -> (f32, f32) {
     let (a, b) = (body(bodies, j.a), body(bodies, j.b));
     let base = (2.0 * p.hertz).max(0.125 / p.h);
@@ -155,6 +159,65 @@ pub fn joint_hertz(j: &JointConstraint, bodies: &[SolverBody], p: &ContactParams
     let needed = linear.max(angular) / std::f32::consts::TAU;
     let needed = if needed.is_finite() { needed } else { 0.0 };
     (base.max(needed), needed)
+}
+
+/// The highest frequency of the rows that hold a joint together, in multiples of the
+/// substep rate. Those rows are solved at once and exactly (`joint_direct`), an implicit
+/// spring stable at any stiffness, so they are not held to the quarter of the substep
+/// rate that Gauss–Seidel rows need; a joint's sag rule (see [`joint_hertz`]) may ask
+/// for more. The 30-link chain under a 100:1 ball at 4 substeps stretched 2.86 % at a
+/// quarter, 1.65 % at a half, 0.50 % at one and 0.13 % at two (where its sag rule is met);
+/// a pendulum, a cradle and a taut plank bridge under a crate keep their energy at two.
+pub const HELD_MAX_RATE: f32 = 2.0;
+
+/// The most a jointed body may turn, in radians of its ringing per substep (ω·h), before
+/// the substeps are raised: see [`tension_omega`].
+pub const MAX_TENSION_TURN: f32 = 1.5;
+
+/// How fast the stiffest jointed body rings about its joints, rad/s.
+///
+/// A body held at arm r by a joint that pulls with tension T (a link of a taut chain)
+/// and turned by θ feels a torque T·|r|·θ back (the pull keeps its direction while its
+/// arm turns): with k its inverse inertia across r, ω² = k·Σ T·|r| over its joints. The
+/// solve freezes each row's direction over a substep, so it meets that stiffness
+/// explicitly and, like a spring under symplectic Euler, stays stable only while ω·h < 2.
+/// Measured: a 30-link chain whipping a 100:1 ball down from the horizontal (T up to
+/// 560 N, ω ≈ 560 rad/s) blew apart at 4 substeps (ω·h ≈ 2.3) and held within 0.1 mm at
+/// 5; the same chain hanging still (T 127 N, ω·h ≈ 1.1) needs no more than 4. `scratch`
+/// is working space.
+pub fn tension_omega(
+    joints: &[JointConstraint],
+    bodies: &[SolverBody],
+    scratch: &mut Vec<(u32, f32)>,
+) -> f32 {
+    scratch.clear();
+    for j in joints.iter().filter(|j| j.load > 0.0) {
+        for (i, arm) in [(j.a, j.ra), (j.b, j.rb)] {
+            if i == STATIC {
+                continue;
+            }
+            let k = inverse_inertia_across(&bodies[i as usize].inv_inertia, arm);
+            scratch.push((i, j.load * arm.length() * k));
+        }
+    }
+    scratch.sort_unstable_by_key(|x| x.0);
+    let most = scratch
+        .chunk_by(|x, y| x.0 == y.0)
+        .map(|run| run.iter().map(|x| x.1).sum::<f32>())
+        .fold(0.0f32, f32::max);
+    let omega = most.sqrt();
+    if omega.is_finite() { omega } else { 0.0 }
+}
+
+/// The largest inverse inertia about an axis across `arm` (any axis when it is zero).
+fn inverse_inertia_across(inv_inertia: &Mat3, arm: Vec3) -> f32 {
+    let (t1, t2) = arm.normalize_or(Vec3::X).any_orthonormal_pair();
+    let (a, b, c) = (
+        t1.dot(*inv_inertia * t1),
+        t1.dot(*inv_inertia * t2),
+        t2.dot(*inv_inertia * t2),
+    );
+    0.5 * (a + c) + (0.25 * (a - c) * (a - c) + b * b).sqrt()
 }
 
 /// The least size a joint's sag is measured against, m (a joint at both centres of mass
