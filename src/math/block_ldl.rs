@@ -146,6 +146,17 @@ impl BlockPattern {
         self.index.get(&(a.min(b), a.max(b))).copied()
     }
 
+    /// Where the entries coupling `a`'s rows with `b`'s go (looked up once per pair, not
+    /// per entry): see [`BlockMatrix::add_to`].
+    pub fn slot(&self, a: u32, b: u32) -> Option<Slot> {
+        let id = self.coupling(a, b)?;
+        // Stored by the rows of the node eliminated later.
+        Some(Slot {
+            id,
+            transposed: self.first[id as usize] == a,
+        })
+    }
+
     pub fn nodes(&self) -> usize {
         self.sizes.len()
     }
@@ -154,6 +165,13 @@ impl BlockPattern {
     pub fn fill(&self) -> usize {
         self.first.len()
     }
+}
+
+/// An off-diagonal block as one pair of nodes sees it.
+#[derive(Clone, Copy, Debug)]
+pub struct Slot {
+    id: u32,
+    transposed: bool,
 }
 
 /// A matrix on a [`BlockPattern`], then its factor. Off-diagonal block (k, p) holds the
@@ -166,6 +184,8 @@ pub struct BlockMatrix {
     scale: Vec<[f64; MAX_BLOCK]>,
     /// Each node's row offset in a right-hand side.
     offsets: Vec<usize>,
+    /// A node's blocks of L while it is eliminated.
+    scratch: Vec<Block>,
 }
 
 impl BlockMatrix {
@@ -202,6 +222,7 @@ impl BlockMatrix {
     }
 
     /// Adds `v` to the entry coupling row `r` of node `a` with row `c` of node `b`.
+    #[cfg(test)]
     pub fn add_coupling(
         &mut self,
         p: &BlockPattern,
@@ -209,10 +230,15 @@ impl BlockMatrix {
         (b, c): (u32, usize),
         v: f64,
     ) {
-        let id = p.coupling(a, b).expect("coupled nodes") as usize;
-        // Stored by the rows of the node eliminated later.
-        let (r, c) = if p.first[id] == a { (c, r) } else { (r, c) };
-        self.off[id][at(r, c)] += v;
+        self.add_to(p.slot(a, b).expect("coupled nodes"), r, c, v);
+    }
+
+    /// Adds `v` to the entry of `slot` coupling row `r` of its first node with row `c` of
+    /// its second.
+    #[inline]
+    pub fn add_to(&mut self, slot: Slot, r: usize, c: usize, v: f64) {
+        let (r, c) = if slot.transposed { (c, r) } else { (r, c) };
+        self.off[slot.id as usize][at(r, c)] += v;
     }
 
     /// Factors in place: LDLᵀ by blocks, each D block kept as its (pseudo-)inverse.
@@ -225,7 +251,7 @@ impl BlockMatrix {
             }
             self.scale.push(s);
         }
-        let mut l: Vec<Block> = Vec::new();
+        let mut l = std::mem::take(&mut self.scratch);
         for &k in &pattern.order {
             let ku = k as usize;
             let sk = pattern.sizes[ku];
@@ -269,6 +295,7 @@ impl BlockMatrix {
                 self.off[id as usize] = l[i];
             }
         }
+        self.scratch = l;
     }
 
     /// Solves in place: `x` holds the right-hand side and leaves with the solution.

@@ -344,10 +344,11 @@ impl JointSystem {
             for (m, &(_, x)) in run.iter().enumerate() {
                 for &(_, y) in run[m + 1..].iter().filter(|y| y.1 != x) {
                     let (nx, ny) = (&nodes[x as usize], &nodes[y as usize]);
+                    let slot = pattern.slot(x, y).expect("nodes on one body couple");
                     for (r, rx) in rows[rows_of(x as usize)].iter().enumerate() {
                         for (s, ry) in rows[rows_of(y as usize)].iter().enumerate() {
                             let v = through(body, rx.on(nx.b == i), ry.on(ny.b == i));
-                            matrix.add_coupling(pattern, (x, r), (y, s), v as f64);
+                            matrix.add_to(slot, r, s, v as f64);
                         }
                     }
                 }
