@@ -189,6 +189,10 @@ pub fn compare_scene(scene: &SceneDesc) -> [f64; 3] {
         );
         out[k] = m;
     }
+    // The same bits at every thread count (the split levels and the narrow phase's runs
+    // join in a fixed order): compare this line across `--threads`.
+    let hash = tumble::state_hash::state_hash(runs[0].app.world_mut());
+    println!("\ntumble's state after the run: {hash:016x}");
     out
 }
 

@@ -5,6 +5,7 @@
 
 mod awake_tree;
 mod batching;
+mod body_view;
 mod bounds_index;
 mod constraint;
 mod contact_batch;
@@ -14,6 +15,7 @@ mod manifold;
 
 pub(crate) use awake_tree::AwakeTree;
 pub(crate) use batching::{ContactBatches, LANES, NO_CONTACT, SolveStep, moved_by_contacts};
+pub(crate) use body_view::{BodyView, SharedBodies};
 pub(crate) use constraint::{
     Anchoring, AngularRow, ConstraintPoint, ContactConstraint, ContactParams, NO_ROLL, RollingArms,
     body, row_velocity, store,

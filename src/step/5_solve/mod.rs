@@ -10,6 +10,9 @@ mod joint;
 mod joint_direct;
 #[cfg(test)]
 mod joint_direct_tests;
+mod split;
+#[cfg(test)]
+mod split_tests;
 mod stiffness;
 mod wide;
 #[cfg(test)]
@@ -308,6 +311,10 @@ pub(crate) fn warm_start_steps(
     batches: &ContactBatches,
     steps: Range<usize>,
 ) {
+    if split::worth_splitting(batches, &steps) {
+        split::warm_start_steps(split::Runner::Pool, bodies, constraints, batches, steps);
+        return;
+    }
     for step in &batches.steps[steps] {
         match step {
             SolveStep::Batches(r) => {
@@ -329,6 +336,20 @@ pub(crate) fn solve_steps(
     h: f32,
     use_bias: bool,
 ) {
+    if split::worth_splitting(batches, &steps) {
+        let runner = split::Runner::Pool;
+        split::solve_steps(
+            runner,
+            bodies,
+            constraints,
+            batches,
+            steps,
+            arms,
+            h,
+            use_bias,
+        );
+        return;
+    }
     for step in &batches.steps[steps] {
         match step {
             SolveStep::Batches(r) => {

@@ -5,7 +5,7 @@
 //! contacts lane by lane ([`ContactBatch`]) and gathers its bodies' velocities.
 
 use crate::math::lanes::{F4, Q4, V3, clamp, eq, gt, lanes, le, lt, max, neg, select};
-use crate::world::{ContactBatch, LANES, MAX_POINTS, PointLanes, SolverBody, body};
+use crate::world::{BodyView, ContactBatch, LANES, MAX_POINTS, PointLanes};
 
 use super::iterate::{NORMAL_SWEEPS, NORMAL_TOL};
 
@@ -20,9 +20,9 @@ struct BodyLanes {
 
 impl BodyLanes {
     #[inline(always)]
-    fn gather(bodies: &[SolverBody], index: [u32; LANES]) -> Self {
-        let (b0, b1) = (body(bodies, index[0]), body(bodies, index[1]));
-        let (b2, b3) = (body(bodies, index[2]), body(bodies, index[3]));
+    fn gather(bodies: &(impl BodyView + ?Sized), index: [u32; LANES]) -> Self {
+        let (b0, b1) = (bodies.get(index[0]), bodies.get(index[1]));
+        let (b2, b3) = (bodies.get(index[2]), bodies.get(index[3]));
         Self {
             v: V3::gather([b0.v, b1.v, b2.v, b3.v]),
             w: V3::gather([b0.w, b1.w, b2.w, b3.w]),
@@ -34,11 +34,15 @@ impl BodyLanes {
 
     /// Velocities back to the bodies the contacts move.
     #[inline(always)]
-    fn scatter(&self, bodies: &mut [SolverBody], index: [u32; LANES], moved: [bool; LANES]) {
+    fn scatter(
+        &self,
+        bodies: &mut (impl BodyView + ?Sized),
+        index: [u32; LANES],
+        moved: [bool; LANES],
+    ) {
         for l in 0..LANES {
             if moved[l] {
-                let b = &mut bodies[index[l] as usize];
-                (b.v, b.w) = (self.v.lane(l), self.w.lane(l));
+                bodies.set_velocity(index[l], self.v.lane(l), self.w.lane(l));
             }
         }
     }
@@ -112,7 +116,7 @@ fn apply_tangent(
 /// [`warm_start_listed`](super::iterate::warm_start_listed) over the batches.
 /// `points` starts at the first batch's.
 pub fn warm_start_batches(
-    bodies: &mut [SolverBody],
+    bodies: &mut (impl BodyView + ?Sized),
     batches: &[ContactBatch],
     points: &[PointLanes],
 ) {
@@ -141,7 +145,7 @@ pub fn warm_start_batches(
 /// rolling motion).
 /// `points` starts at the first batch's.
 pub fn solve_batches(
-    bodies: &mut [SolverBody],
+    bodies: &mut (impl BodyView + ?Sized),
     batches: &[ContactBatch],
     points: &mut [PointLanes],
     h: f32,
@@ -158,7 +162,7 @@ pub fn solve_batches(
 
 #[inline(always)]
 fn solve_batch(
-    bodies: &mut [SolverBody],
+    bodies: &mut (impl BodyView + ?Sized),
     c: &ContactBatch,
     point: &mut [PointLanes],
     inv_h: F4,

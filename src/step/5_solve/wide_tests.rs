@@ -14,7 +14,7 @@ use crate::world::{
     NO_ROLL, STATIC, SolverBody, body, world_inv_inertia,
 };
 
-fn random_body(r: &mut Rnd) -> SolverBody {
+pub(super) fn random_body(r: &mut Rnd) -> SolverBody {
     let kind = r.unit();
     let (inv_mass, inv_inertia) = if kind < 0.1 {
         (0.0, Mat3::ZERO) // kinematic
@@ -44,7 +44,7 @@ fn isotropic(b: &SolverBody) -> bool {
     b.inv_inertia == Mat3::from_diagonal(Vec3::splat(b.inv_inertia.x_axis.x))
 }
 
-fn random_contact(r: &mut Rnd, bodies: &[SolverBody], fixed: bool) -> ContactConstraint {
+pub(super) fn random_contact(r: &mut Rnd, bodies: &[SolverBody], fixed: bool) -> ContactConstraint {
     let n = bodies.len() as u32;
     let pick = |r: &mut Rnd| ((r.unit() * n as f32) as u32).min(n - 1);
     let (mut a, mut b) = (pick(r), pick(r));
@@ -123,7 +123,7 @@ fn random_contact(r: &mut Rnd, bodies: &[SolverBody], fixed: bool) -> ContactCon
     }
 }
 
-fn assert_same(bodies: &[SolverBody], reference: &[SolverBody], what: &str) {
+pub(super) fn assert_same(bodies: &[SolverBody], reference: &[SolverBody], what: &str) {
     for (i, (x, y)) in bodies.iter().zip(reference).enumerate() {
         assert!(
             x.v == y.v && x.w == y.w,

@@ -1,0 +1,305 @@
+//! A pass's wide levels split between two threads. The contacts of a level move disjoint
+//! bodies (`ContactBatches`), so its batches can be solved in any order, by any thread,
+//! and leave the same bits: the result does not depend on the thread count.
+//!
+//! The calling thread leads: it walks the pass in order, does the scalar contacts and
+//! narrow levels itself, and opens each wide level in chunks of [`CHUNK`] batches. A
+//! helper task on Bevy's `ComputeTaskPool` claims chunks beside it; the leader claims too,
+//! so a helper that starts late (or never: a single-threaded pool runs it after the pass)
+//! costs only the claims. The leader moves on once every chunk of the level is done.
+
+use std::ops::Range;
+use std::sync::atomic::{AtomicU32, AtomicU64, Ordering};
+
+use super::iterate::{solve_listed, warm_start_listed};
+use super::wide::{solve_batches, warm_start_batches};
+use crate::world::{
+    ContactBatches, ContactConstraint, RollingArms, SharedBodies, SolveStep, SolverBody,
+};
+
+/// Batches per claimed chunk (32 contacts).
+pub(crate) const CHUNK: usize = 8;
+/// The fewest batches a level must hold to be split (two chunks).
+const SPLIT_FROM: usize = 2 * CHUNK;
+/// The fewest batches a pass's split levels must hold for a second thread to be worth
+/// waking (per pass, each wait costs about a microsecond).
+const PASS_FROM: usize = 256;
+
+/// The claim word's step before the first level and after the last.
+const IDLE: u32 = u32::MAX - 1;
+const STOP: u32 = u32::MAX;
+
+/// The chunks a step is split into, if it is split.
+pub(crate) fn chunks(step: &SolveStep) -> Option<u32> {
+    match step {
+        SolveStep::Batches(r) if r.len() >= SPLIT_FROM => Some(r.len().div_ceil(CHUNK) as u32),
+        _ => None,
+    }
+}
+
+/// Chunk `i`'s batches of a split step.
+fn piece(step: &SolveStep, i: u32) -> Range<usize> {
+    let SolveStep::Batches(r) = step else {
+        unreachable!("only batch steps are split")
+    };
+    let start = r.start + i as usize * CHUNK;
+    start..(start + CHUNK).min(r.end)
+}
+
+/// Whether `steps` are worth splitting on this app's compute pool.
+pub(crate) fn worth_splitting(batches: &ContactBatches, steps: &Range<usize>) -> bool {
+    let threads = bevy::tasks::ComputeTaskPool::try_get().map_or(1, |p| p.thread_num());
+    threads >= 2
+        && batches.steps[steps.clone()]
+            .iter()
+            .filter(|s| chunks(s).is_some())
+            .map(|s| match s {
+                SolveStep::Batches(r) => r.len(),
+                SolveStep::Scalar(_) => 0,
+            })
+            .sum::<usize>()
+            >= PASS_FROM
+}
+
+/// A slice shared by raw pointer between the threads of a split pass, each taking its
+/// own disjoint part.
+#[derive(Clone, Copy)]
+pub(crate) struct Shared<T> {
+    ptr: *mut T,
+    len: usize,
+}
+
+// SAFETY: the parts taken by different threads are disjoint (`slice`'s contract).
+unsafe impl<T: Send> Send for Shared<T> {}
+unsafe impl<T: Send> Sync for Shared<T> {}
+
+impl<T> Shared<T> {
+    pub(crate) fn new(items: &mut [T]) -> Self {
+        Self {
+            ptr: items.as_mut_ptr(),
+            len: items.len(),
+        }
+    }
+
+    /// The items of `range`.
+    ///
+    /// # Safety
+    /// No other thread may touch them while the slice lives.
+    #[allow(clippy::mut_from_ref)]
+    pub(crate) unsafe fn slice(&self, range: Range<usize>) -> &mut [T] {
+        assert!(range.start <= range.end && range.end <= self.len);
+        // SAFETY: in bounds; exclusive by the caller's promise.
+        unsafe { std::slice::from_raw_parts_mut(self.ptr.add(range.start), range.len()) }
+    }
+}
+
+/// The state the leader and the helper share over one pass.
+pub(crate) struct Split<'a> {
+    steps: &'a [SolveStep],
+    /// The open step (high half) and its next unclaimed chunk (low half).
+    claim: AtomicU64,
+    /// Chunks of the open step finished.
+    done: AtomicU32,
+    /// Chunks the helper ran in all.
+    helped: AtomicU32,
+    /// Whether the leader claims chunks too (the tests leave them all to the helper, so
+    /// that every level crosses threads whatever the scheduler does).
+    leader_claims: bool,
+}
+
+fn word(step: u32, chunk: u32) -> u64 {
+    ((step as u64) << 32) | chunk as u64
+}
+
+/// Waits a little, then lets the other threads run (the machine may have no core free).
+fn snooze(spins: &mut u32) {
+    if *spins < 64 {
+        std::hint::spin_loop();
+        *spins += 1;
+    } else {
+        std::thread::yield_now();
+    }
+}
+
+impl<'a> Split<'a> {
+    pub(crate) fn new(steps: &'a [SolveStep], leader_claims: bool) -> Self {
+        Self {
+            leader_claims,
+            steps,
+            claim: AtomicU64::new(word(IDLE, 0)),
+            done: AtomicU32::new(0),
+            helped: AtomicU32::new(0),
+        }
+    }
+
+    /// Claims and runs chunks of the open step until none is left (counting them in
+    /// `ran`); false once stopped.
+    fn work(
+        &self,
+        bodies: &mut SharedBodies,
+        chunk: &impl Fn(&mut SharedBodies, Range<usize>),
+        ran: &mut u32,
+    ) -> bool {
+        loop {
+            let c = self.claim.load(Ordering::Acquire);
+            let (step, i) = ((c >> 32) as u32, c as u32);
+            if step == STOP {
+                return false;
+            }
+            if step == IDLE {
+                return true;
+            }
+            let s = &self.steps[step as usize];
+            if i >= chunks(s).unwrap_or(0) {
+                return true;
+            }
+            let next = word(step, i + 1);
+            if (self.claim)
+                .compare_exchange_weak(c, next, Ordering::AcqRel, Ordering::Relaxed)
+                .is_ok()
+            {
+                chunk(bodies, piece(s, i));
+                *ran += 1;
+                self.done.fetch_add(1, Ordering::Release);
+            }
+        }
+    }
+
+    /// The helper: claims chunks as levels open, until the leader stops.
+    pub(crate) fn help(
+        &self,
+        mut bodies: SharedBodies,
+        chunk: &impl Fn(&mut SharedBodies, Range<usize>),
+    ) {
+        let (mut spins, mut ran) = (0, 0);
+        while self.work(&mut bodies, chunk, &mut ran) {
+            snooze(&mut spins);
+        }
+        self.helped.store(ran, Ordering::Relaxed);
+    }
+
+    /// The leader: the pass in order, wide levels shared, the rest by `serial` (which
+    /// runs while the helper only waits).
+    pub(crate) fn lead(
+        &self,
+        mut bodies: SharedBodies,
+        chunk: &impl Fn(&mut SharedBodies, Range<usize>),
+        mut serial: impl FnMut(&mut SharedBodies, &SolveStep),
+    ) {
+        for (k, step) in self.steps.iter().enumerate() {
+            let Some(n) = chunks(step) else {
+                serial(&mut bodies, step);
+                continue;
+            };
+            self.done.store(0, Ordering::Relaxed);
+            // Release: the helper sees every body as the steps before left it.
+            self.claim.store(word(k as u32, 0), Ordering::Release);
+            if self.leader_claims {
+                self.work(&mut bodies, chunk, &mut 0);
+            }
+            let mut spins = 0;
+            // Acquire: and the leader sees the helper's chunks.
+            while self.done.load(Ordering::Acquire) < n {
+                snooze(&mut spins);
+            }
+        }
+        self.claim.store(word(STOP, 0), Ordering::Release);
+    }
+}
+
+/// Where the helper runs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Runner {
+    /// A task on Bevy's `ComputeTaskPool` (the step's way).
+    Pool,
+    /// A thread of its own, which runs every chunk (the tests': their pool has no
+    /// threads).
+    #[cfg(test)]
+    Thread,
+}
+
+/// Runs `steps` with their wide levels split between this thread and a helper; returns
+/// how many chunks the helper ran.
+fn run(
+    runner: Runner,
+    bodies: SharedBodies,
+    steps: &[SolveStep],
+    chunk: &(impl Fn(&mut SharedBodies, Range<usize>) + Sync),
+    serial: impl FnMut(&mut SharedBodies, &SolveStep),
+) -> u32 {
+    let split = Split::new(steps, runner == Runner::Pool);
+    let split = &split;
+    match runner {
+        Runner::Pool => {
+            bevy::tasks::ComputeTaskPool::get().scope(|scope| {
+                scope.spawn(async move { split.help(bodies, chunk) });
+                split.lead(bodies, chunk, serial);
+            });
+        }
+        #[cfg(test)]
+        Runner::Thread => std::thread::scope(|scope| {
+            scope.spawn(move || split.help(bodies, chunk));
+            split.lead(bodies, chunk, serial);
+        }),
+    }
+    split.helped.load(Ordering::Relaxed)
+}
+
+/// [`warm_start_steps`](super::warm_start_steps), split.
+pub(crate) fn warm_start_steps(
+    runner: Runner,
+    bodies: &mut [SolverBody],
+    constraints: &[ContactConstraint],
+    batches: &ContactBatches,
+    steps: Range<usize>,
+) -> u32 {
+    let chunk = |view: &mut SharedBodies, r: Range<usize>| {
+        let points = &batches.points[batches.points_of(&r)];
+        warm_start_batches(view, &batches.batches[r], points);
+    };
+    let serial = |view: &mut SharedBodies, step: &SolveStep| match step {
+        SolveStep::Batches(r) => chunk(view, r.clone()),
+        // SAFETY: the helper waits while the leader runs anything but a split level.
+        SolveStep::Scalar(c) => warm_start_listed(unsafe { view.slice() }, constraints, &[*c]),
+    };
+    let view = SharedBodies::new(bodies);
+    run(runner, view, &batches.steps[steps], &chunk, serial)
+}
+
+/// [`solve_steps`](super::solve_steps), split.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn solve_steps(
+    runner: Runner,
+    bodies: &mut [SolverBody],
+    constraints: &mut [ContactConstraint],
+    batches: &mut ContactBatches,
+    steps: Range<usize>,
+    arms: &[RollingArms],
+    h: f32,
+    use_bias: bool,
+) -> u32 {
+    let ContactBatches {
+        batches: list,
+        points,
+        steps: all,
+        ..
+    } = batches;
+    let points = Shared::new(points);
+    let list = &list[..];
+    let points_of = |r: &Range<usize>| list[r.start].first as usize..list[r.end - 1].range().end;
+    let chunk = |view: &mut SharedBodies, r: Range<usize>| {
+        // SAFETY: a chunk's points are its batches' own; no other chunk has them.
+        let points = unsafe { points.slice(points_of(&r)) };
+        solve_batches(view, &list[r], points, h, use_bias);
+    };
+    let serial = |view: &mut SharedBodies, step: &SolveStep| match step {
+        SolveStep::Batches(r) => chunk(view, r.clone()),
+        SolveStep::Scalar(c) => {
+            // SAFETY: the helper waits while the leader runs anything but a split level.
+            let bodies = unsafe { view.slice() };
+            solve_listed(bodies, constraints, &[*c], arms, h, use_bias);
+        }
+    };
+    let view = SharedBodies::new(bodies);
+    run(runner, view, &all[steps], &chunk, serial)
+}
