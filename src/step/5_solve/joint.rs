@@ -479,37 +479,13 @@ fn solve_distance(
     }
 }
 
-/// Each joint's force (on B, N, world) and torque (N·m) in the last substep of `h` s,
-/// and the substep its impulses are per.
-pub fn store_joint_forces(joints: &mut [JointConstraint], bodies: &[SolverBody], h: f32) {
-    for j in joints.iter_mut() {
-        (j.force, j.torque) = joint_force(j, bodies, h);
-        j.h = h;
-    }
-}
-
 /// A ball joint's accumulated cone and twist impulses as one angular impulse on B.
 /// The twist's rows lie midway between the two axes (see [`solve_turn_axis`]).
-fn spherical_torque(j: &JointConstraint, b: &SolverBody, axis: Vec3) -> Vec3 {
+pub(super) fn spherical_torque(j: &JointConstraint, b: &SolverBody, axis: Vec3) -> Vec3 {
     let axis_b = b.dq * j.axis_b;
     let twist = (axis + axis_b).normalize_or(axis) * (j.axial[1] - j.axial[2]);
     match j.cone {
         Some(_) => twist - cone_lean(axis, axis_b).1 * j.axial[0],
         None => twist,
     }
-}
-
-fn joint_force(j: &JointConstraint, bodies: &[SolverBody], h: f32) -> (Vec3, Vec3) {
-    let (a, b) = (body(bodies, j.a), body(bodies, j.b));
-    let f = now(j, &a, &b);
-    let axial = j.axial[0] + j.axial[1] - j.axial[2];
-    let (mut force, mut torque) = (j.linear, j.angular);
-    match j.rows {
-        JointRows::Revolute => torque += f.axis * axial,
-        JointRows::Spherical => torque += spherical_torque(j, &b, f.axis),
-        JointRows::Prismatic => force += f.axis * axial,
-        JointRows::Distance => force += f.d.normalize_or(f.axis) * axial,
-        JointRows::Fixed => {}
-    }
-    (force / h, torque / h)
 }

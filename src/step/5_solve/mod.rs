@@ -10,6 +10,7 @@ mod joint;
 mod joint_direct;
 #[cfg(test)]
 mod joint_direct_tests;
+mod joint_forces;
 mod split;
 #[cfg(test)]
 mod split_tests;
@@ -33,8 +34,9 @@ use crate::world::{
 pub use contact::{prepare_constraints, refresh_rows, sum_impulses};
 pub use continuous::sweep_against_fixed;
 pub use iterate::{apply_restitution, solve_listed, stop_approach, warm_start_listed};
-use joint::{solve_joints, store_joint_forces, warm_start_joints};
+use joint::{solve_joints, warm_start_joints};
 use joint_direct::JointSystem;
+use joint_forces::store_joint_forces;
 use stiffness::{HELD_MAX_RATE, JOINT_DAMPING_RATIO, MAX_TENSION_TURN, joint_hertz, tension_omega};
 pub use stiffness::{pair_size, substeps_for, wanted_hertz};
 pub use wide::{solve_batches, warm_start_batches};
