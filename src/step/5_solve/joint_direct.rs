@@ -31,8 +31,9 @@ use crate::world::{JointConstraint, JointRows, STATIC, SolverBody, body};
 /// between two fixed points: the sum of its rows along the chain) are only nearly so
 /// from f32 rows, and solved undamped they took impulses of round-off over a pivot of
 /// round-off: a taut bridge reported 52 kN in its first step and flew apart when a crate
-/// stepped on it. Damped, such an impulse stays near its round-off; a chain's slowest
-/// genuine mode (its pivot near 1e-5 of the diagonal) loses a tenth of its step.
+/// stepped on it. Damped, such an impulse stays near its round-off, while a genuine
+/// mode loses little of its step (one whose pivot is 1e-5 of its diagonal, a tenth; the
+/// next passes and substeps make it up).
 const DAMPING: f32 = 1e-6;
 
 /// One equality row: its Jacobian on A and on B (linear, angular parts; J·v is their dot
