@@ -2,6 +2,9 @@
 //! everything on, and with each other effect added alone. Prints a table (median step
 //! time of interleaved rounds, single-threaded release build).
 //!
+//! Also the gather and writeback of 10,000 bodies (free flight, where they are nearly
+//! the whole step).
+//!
 //! `cargo bench --bench effects [-- <title filter>]`
 
 use std::time::Instant;
@@ -150,6 +153,19 @@ fn main() {
     }
     run("1000 balls in free flight", || {
         effect_cases(&free, Effects::FREE_FLIGHT)
+    });
+
+    // Gather and writeback at 10,000 bodies (the performance issue's kernel): in free
+    // flight prepare and writeback are nearly the whole step.
+    let mut many = free.clone();
+    if let tumble::scene::BodyGroup::Pile { count, .. } = &mut many.bodies[0] {
+        *count = 10_000;
+    }
+    run("10000 balls in free flight (gather and writeback)", || {
+        let spawn = |w: &mut World| {
+            many.spawn_into(w);
+        };
+        vec![Case::new("only what it needs", Effects::FREE_FLIGHT, spawn)]
     });
 
     // The 385-cube pyramid: gravity, collisions, friction, rotation.
