@@ -2,6 +2,8 @@
 //! while two threads split a level of batches, [`SharedBodies`], the same array by raw
 //! pointer (no thread holds a reference the other's writes alias).
 
+use std::ops::Range;
+
 use bevy::prelude::*;
 
 use super::constraint::STATIC_BODY;
@@ -30,38 +32,54 @@ impl BodyView for [SolverBody] {
     }
 }
 
-/// The bodies of one solve shared between the threads that split a level: the contacts
-/// of a level move disjoint bodies (`ContactBatches`), and a thread writes only the
-/// bodies its own batches move, so no two threads touch one body's velocities while
-/// either writes them. Positions and masses are read only.
+/// A slice shared by raw pointer between the threads of a split pass, each touching only
+/// its own part of it while another thread may write.
 #[derive(Clone, Copy)]
-pub(crate) struct SharedBodies {
-    ptr: *mut SolverBody,
+pub(crate) struct Shared<T> {
+    ptr: *mut T,
     len: usize,
 }
 
-// SAFETY: see the type's documentation; the split driver (`5_solve/split.rs`) keeps
-// threads to disjoint moved bodies and orders levels with acquire/release atomics.
-unsafe impl Send for SharedBodies {}
-unsafe impl Sync for SharedBodies {}
+// SAFETY: threads take disjoint parts (`slice`'s and `BodyView`'s contracts below); the
+// split driver (`5_solve/split.rs`) orders levels with acquire/release atomics.
+unsafe impl<T: Send> Send for Shared<T> {}
+unsafe impl<T: Send> Sync for Shared<T> {}
 
-impl SharedBodies {
-    pub(crate) fn new(bodies: &mut [SolverBody]) -> Self {
+impl<T> Shared<T> {
+    pub(crate) fn new(items: &mut [T]) -> Self {
         Self {
-            ptr: bodies.as_mut_ptr(),
-            len: bodies.len(),
+            ptr: items.as_mut_ptr(),
+            len: items.len(),
         }
     }
 
-    /// The whole slice, for work the calling thread does alone.
+    /// The items of `range`.
     ///
     /// # Safety
-    /// No other thread may touch the bodies while the slice lives.
-    pub(crate) unsafe fn slice(&mut self) -> &mut [SolverBody] {
-        // SAFETY: the caller's promise; `ptr` and `len` come from a live slice.
-        unsafe { std::slice::from_raw_parts_mut(self.ptr, self.len) }
+    /// No other thread may touch them while the slice lives.
+    #[allow(clippy::mut_from_ref)]
+    pub(crate) unsafe fn slice(&self, range: Range<usize>) -> &mut [T] {
+        assert!(range.start <= range.end && range.end <= self.len);
+        // SAFETY: in bounds; exclusive by the caller's promise.
+        unsafe { std::slice::from_raw_parts_mut(self.ptr.add(range.start), range.len()) }
+    }
+
+    /// All the items.
+    ///
+    /// # Safety
+    /// As [`slice`](Self::slice): no other thread may touch any of them meanwhile.
+    #[allow(clippy::mut_from_ref)]
+    pub(crate) unsafe fn whole(&self) -> &mut [T] {
+        // SAFETY: the caller's promise.
+        unsafe { self.slice(0..self.len) }
     }
 }
+
+/// The bodies of one solve, shared between the threads that split a level: the contacts
+/// of a level move disjoint bodies (`ContactBatches`), and a thread writes only the
+/// bodies its own batches move, so no two threads touch one body's velocities while
+/// either writes them. Positions and masses are read only.
+pub(crate) type SharedBodies = Shared<SolverBody>;
 
 impl BodyView for SharedBodies {
     #[inline(always)]
@@ -70,8 +88,7 @@ impl BodyView for SharedBodies {
             return STATIC_BODY;
         }
         assert!((i as usize) < self.len, "body index out of range");
-        // SAFETY: in bounds; no other thread writes a body this thread's batch reads
-        // (see the type's documentation).
+        // SAFETY: in bounds; no other thread writes a body this thread's batch reads.
         unsafe { self.ptr.add(i as usize).read() }
     }
 

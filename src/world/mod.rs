@@ -15,7 +15,7 @@ mod manifold;
 
 pub(crate) use awake_tree::AwakeTree;
 pub(crate) use batching::{ContactBatches, LANES, NO_CONTACT, SolveStep, moved_by_contacts};
-pub(crate) use body_view::{BodyView, SharedBodies};
+pub(crate) use body_view::{BodyView, Shared, SharedBodies};
 pub(crate) use constraint::{
     Anchoring, AngularRow, ConstraintPoint, ContactConstraint, ContactParams, NO_ROLL, RollingArms,
     body, row_velocity, store,

@@ -249,15 +249,6 @@ impl JointSystem {
         self.matrix.factor(&self.pattern);
     }
 
-    fn node_rows(&self, k: usize) -> std::ops::Range<usize> {
-        let first = self.nodes[k].first_row as usize;
-        let end = self
-            .nodes
-            .get(k + 1)
-            .map_or(self.rows.len(), |n| n.first_row as usize);
-        first..end
-    }
-
     /// A new pattern when the joints' bodies or rows changed.
     fn refresh_pattern(&mut self) {
         let key = (0..self.nodes.len()).map(|k| {
@@ -266,7 +257,7 @@ impl JointSystem {
             (
                 side(n.a, n.moves[0]),
                 side(n.b, n.moves[1]),
-                self.node_rows(k).len() as u8,
+                rows_of(&self.nodes, self.rows.len(), k).len() as u8,
             )
         });
         if key.clone().eq(self.key.iter().copied()) {
@@ -309,12 +300,7 @@ impl JointSystem {
         } = self;
         matrix.reset(pattern);
         own.clear();
-        let rows_of = |k: usize| {
-            let end = nodes
-                .get(k + 1)
-                .map_or(rows.len(), |n| n.first_row as usize);
-            nodes[k].first_row as usize..end
-        };
+        let rows_of = |k: usize| rows_of(nodes, rows.len(), k);
         for (k, n) in nodes.iter().enumerate() {
             let node_rows = &rows[rows_of(k)];
             let first_group = n.groups[0].map_or(0, Group::rows);
@@ -376,12 +362,7 @@ impl JointSystem {
             } else {
                 0.0
             };
-            let first = n.first_row as usize;
-            let end = self
-                .nodes
-                .get(k + 1)
-                .map_or(self.rows.len(), |n| n.first_row as usize);
-            let rows = &self.rows[first..end];
+            let rows = &self.rows[rows_of(&self.nodes, self.rows.len(), k)];
             let own = &self.own[k];
             for (r, row) in rows.iter().enumerate() {
                 let jv = row.la.dot(a.v) + row.aa.dot(a.w) + row.lb.dot(b.v) + row.ab.dot(b.w);
@@ -394,12 +375,8 @@ impl JointSystem {
         }
         self.matrix.solve(&self.pattern, &mut self.rhs);
         for (k, n) in self.nodes.iter().enumerate() {
-            let first = n.first_row as usize;
-            let end = self
-                .nodes
-                .get(k + 1)
-                .map_or(self.rows.len(), |n| n.first_row as usize);
-            for r in first..end {
+            let range = rows_of(&self.nodes, self.rows.len(), k);
+            for r in range.clone() {
                 let dl = self.rhs[r] as f32;
                 let row = &mut self.rows[r];
                 row.lambda += dl;
@@ -412,9 +389,15 @@ impl JointSystem {
                     }
                 }
             }
-            keep_impulses(&mut joints[n.joint as usize], n, &self.rows[first..end]);
+            keep_impulses(&mut joints[n.joint as usize], n, &self.rows[range]);
         }
     }
+}
+
+/// Node `k`'s rows among `total`: from its first to the next node's.
+fn rows_of(nodes: &[Node], total: usize, k: usize) -> std::ops::Range<usize> {
+    let end = nodes.get(k + 1).map_or(total, |n| n.first_row as usize);
+    nodes[k].first_row as usize..end
 }
 
 /// The rows' impulses back into the joint's accumulators.

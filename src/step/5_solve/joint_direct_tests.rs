@@ -24,7 +24,7 @@ fn random_body(r: &mut Rnd) -> SolverBody {
 
 /// A joint of `rows` between `a` and `b` with random anchors, a small error and a rigid
 /// bias (mass scale 1, impulse scale 0: what the direct solve does with the bias rate).
-fn random_joint(r: &mut Rnd, rows: JointRows, a: u32, b: u32) -> JointConstraint {
+pub(super) fn random_joint(r: &mut Rnd, rows: JointRows, a: u32, b: u32) -> JointConstraint {
     let ra = r.vec(-0.5, 0.5);
     let rb = r.vec(-0.5, 0.5);
     let limits = (rows == JointRows::Distance).then_some((0.8, 0.8));

@@ -74,6 +74,9 @@ pub struct SolverScratch {
     report: bool,
     /// This step's contacts packed into batches solved side by side.
     batches: ContactBatches,
+    /// Whether this step's passes over all contacts, and over the fixed ones, split their
+    /// wide levels between threads (decided once a step: `split::worth_splitting`).
+    split: [bool; 2],
     /// The joints' equality rows, solved together.
     joints: JointSystem,
     /// Working space for [`tension_omega`].
@@ -213,6 +216,9 @@ fn run_stage(
             scratch.report = world.constraints.iter().any(|c| c.report);
             let fixed = scratch.fixed_constraints;
             scratch.batches.build(&world.constraints, bodies, fixed);
+            let batches = &scratch.batches;
+            let worth = |steps| split::worth_splitting(batches, &steps);
+            scratch.split = [worth(0..batches.steps.len()), worth(0..batches.fixed_steps)];
         }
         SolverStage::IntegrateVelocities => {
             scratch.free.clear();
@@ -230,8 +236,13 @@ fn run_stage(
         }
         SolverStage::WarmStart => {
             warm_start_joints(bodies, &world.joints);
-            let all = 0..scratch.batches.steps.len();
-            warm_start_steps(bodies, &world.constraints, &scratch.batches, all);
+            let (all, constraints) = (0..scratch.batches.steps.len(), &world.constraints);
+            if scratch.split[0] {
+                let runner = split::Runner::Pool;
+                split::warm_start_steps(runner, bodies, constraints, &scratch.batches, all);
+            } else {
+                warm_start_steps(bodies, constraints, &scratch.batches, all);
+            }
         }
         SolverStage::Solve | SolverStage::Relax => {
             let use_bias = stage == SolverStage::Solve;
@@ -256,24 +267,34 @@ fn run_stage(
                 let (arms, constraints) = (&world.rolling_arms, &mut world.constraints);
                 let batches = &mut scratch.batches;
                 let (steps, fixed_steps) = (batches.steps.len(), batches.fixed_steps);
-                solve_steps(bodies, constraints, batches, 0..steps, arms, h, use_bias);
-                solve_steps(
-                    bodies,
-                    constraints,
-                    batches,
-                    0..fixed_steps,
-                    arms,
-                    h,
-                    use_bias,
-                );
+                for (range, split) in [
+                    (0..steps, scratch.split[0]),
+                    (0..fixed_steps, scratch.split[1]),
+                ] {
+                    if split {
+                        let runner = split::Runner::Pool;
+                        split::solve_steps(
+                            runner,
+                            bodies,
+                            constraints,
+                            batches,
+                            range,
+                            arms,
+                            h,
+                            use_bias,
+                        );
+                    } else {
+                        solve_steps(bodies, constraints, batches, range, arms, h, use_bias);
+                    }
+                }
             }
         }
         SolverStage::IntegratePositions => {
             // The free increment plus the contact impulses' share, h·Δv and h·Δω. A
             // turning anisotropic body's world inertia turns with it, for the contacts
-            // that ask (`refresh`) and for every joint (a chain's thin links spin fast
-            // about their length, where their inertia is small: held at the step's start
-            // pose, it fed that spin into the swing).
+            // that ask (`refresh`) and for the joints, whose anchors already turn with
+            // their bodies each substep (no test measured a difference; it is the
+            // consistent kinematics).
             let turn_inertia = scratch.refresh || !world.joints.is_empty();
             for (&i, fs) in scratch.active.iter().zip(&scratch.free) {
                 let (b, s) = (&world.bodies[i as usize], &mut bodies[i as usize]);
@@ -306,17 +327,14 @@ fn run_stage(
     }
 }
 
-/// Warm starts the contacts of `steps` (see [`SolveStep`]).
+/// Warm starts the contacts of `steps` (see [`SolveStep`]) on this thread (`split` has
+/// the same on two).
 pub(crate) fn warm_start_steps(
     bodies: &mut [SolverBody],
     constraints: &[ContactConstraint],
     batches: &ContactBatches,
     steps: Range<usize>,
 ) {
-    if split::worth_splitting(batches, &steps) {
-        split::warm_start_steps(split::Runner::Pool, bodies, constraints, batches, steps);
-        return;
-    }
     for step in &batches.steps[steps] {
         match step {
             SolveStep::Batches(r) => {
@@ -328,7 +346,8 @@ pub(crate) fn warm_start_steps(
     }
 }
 
-/// One pass of the contacts of `steps` (see [`SolveStep`]).
+/// One pass of the contacts of `steps` (see [`SolveStep`]) on this thread (`split` has
+/// the same on two).
 pub(crate) fn solve_steps(
     bodies: &mut [SolverBody],
     constraints: &mut [ContactConstraint],
@@ -338,20 +357,6 @@ pub(crate) fn solve_steps(
     h: f32,
     use_bias: bool,
 ) {
-    if split::worth_splitting(batches, &steps) {
-        let runner = split::Runner::Pool;
-        split::solve_steps(
-            runner,
-            bodies,
-            constraints,
-            batches,
-            steps,
-            arms,
-            h,
-            use_bias,
-        );
-        return;
-    }
     for step in &batches.steps[steps] {
         match step {
             SolveStep::Batches(r) => {
@@ -406,7 +411,8 @@ fn choose_substeps(
         stiffest = stiffest.max(wanted.needed);
     }
     // Joints with limits: a soft limit row sags under its load as a contact does. (The
-    // rows that hold a joint together are rigid: see `joint_direct`.)
+    // rows that hold a joint together are solved exactly and may be stiffer than the
+    // substeps' cap: see `joint_direct`.)
     for j in world
         .joints
         .iter()

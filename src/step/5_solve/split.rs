@@ -14,7 +14,7 @@ use std::sync::atomic::{AtomicU32, AtomicU64, Ordering};
 use super::iterate::{solve_listed, warm_start_listed};
 use super::wide::{solve_batches, warm_start_batches};
 use crate::world::{
-    ContactBatches, ContactConstraint, RollingArms, SharedBodies, SolveStep, SolverBody,
+    ContactBatches, ContactConstraint, RollingArms, Shared, SharedBodies, SolveStep, SolverBody,
 };
 
 /// The chunks a wide level is cut into, at most: enough for two threads to even out.
@@ -72,38 +72,6 @@ pub(crate) fn worth_splitting(batches: &ContactBatches, steps: &Range<usize>) ->
             })
             .sum::<usize>()
             >= PASS_FROM
-}
-
-/// A slice shared by raw pointer between the threads of a split pass, each taking its
-/// own disjoint part.
-#[derive(Clone, Copy)]
-pub(crate) struct Shared<T> {
-    ptr: *mut T,
-    len: usize,
-}
-
-// SAFETY: the parts taken by different threads are disjoint (`slice`'s contract).
-unsafe impl<T: Send> Send for Shared<T> {}
-unsafe impl<T: Send> Sync for Shared<T> {}
-
-impl<T> Shared<T> {
-    pub(crate) fn new(items: &mut [T]) -> Self {
-        Self {
-            ptr: items.as_mut_ptr(),
-            len: items.len(),
-        }
-    }
-
-    /// The items of `range`.
-    ///
-    /// # Safety
-    /// No other thread may touch them while the slice lives.
-    #[allow(clippy::mut_from_ref)]
-    pub(crate) unsafe fn slice(&self, range: Range<usize>) -> &mut [T] {
-        assert!(range.start <= range.end && range.end <= self.len);
-        // SAFETY: in bounds; exclusive by the caller's promise.
-        unsafe { std::slice::from_raw_parts_mut(self.ptr.add(range.start), range.len()) }
-    }
 }
 
 /// The state the leader and the helper share over one pass.
@@ -273,7 +241,7 @@ pub(crate) fn warm_start_steps(
     let serial = |view: &mut SharedBodies, step: &SolveStep| match step {
         SolveStep::Batches(r) => chunk(view, r.clone()),
         // SAFETY: the helper waits while the leader runs anything but a split level.
-        SolveStep::Scalar(c) => warm_start_listed(unsafe { view.slice() }, constraints, &[*c]),
+        SolveStep::Scalar(c) => warm_start_listed(unsafe { view.whole() }, constraints, &[*c]),
     };
     let view = SharedBodies::new(bodies);
     run(runner, view, &batches.steps[steps], &chunk, serial)
@@ -309,7 +277,7 @@ pub(crate) fn solve_steps(
         SolveStep::Batches(r) => chunk(view, r.clone()),
         SolveStep::Scalar(c) => {
             // SAFETY: the helper waits while the leader runs anything but a split level.
-            let bodies = unsafe { view.slice() };
+            let bodies = unsafe { view.whole() };
             solve_listed(bodies, constraints, &[*c], arms, h, use_bias);
         }
     };

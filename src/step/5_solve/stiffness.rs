@@ -182,7 +182,7 @@ pub const MAX_TENSION_TURN: f32 = 1.5;
 /// solve freezes each row's direction over a substep, so it meets that stiffness
 /// explicitly and, like a spring under symplectic Euler, stays stable only while ω·h < 2.
 /// Measured: a 30-link chain whipping a 100:1 ball down from the horizontal (T up to
-/// 560 N, ω ≈ 560 rad/s) blew apart at 4 substeps (ω·h ≈ 2.3) and held within 0.1 mm at
+/// 560 N, ω ≈ 560 rad/s by this rule) blew apart at 4 substeps (ω·h ≈ 2.3) and held within 0.1 mm at
 /// 5; the same chain hanging still (T 127 N, ω·h ≈ 1.1) needs no more than 4. `scratch`
 /// is working space.
 pub fn tension_omega(
@@ -269,6 +269,40 @@ mod tests {
                 "sag {sag} for size {size}"
             );
         }
+    }
+
+    #[test]
+    fn a_taut_link_rings_at_the_root_of_its_pull_arm_and_inertia() {
+        // A 0.1 kg rod of 0.2 m (I across it m·L²/12), held at both ends (arms 0.1 m)
+        // by pulls of 100 and 50 N, the world on the other side: ω² = k·(100 + 50)·0.1,
+        // with k its inverse inertia across its length (not the huge one about it).
+        use super::super::joint_direct_tests::random_joint;
+        use crate::world::JointRows;
+        let inertia = 0.1 * 0.2 * 0.2 / 12.0;
+        let rod = SolverBody {
+            v: Vec3::ZERO,
+            w: Vec3::ZERO,
+            dp: Vec3::ZERO,
+            dq: bevy::math::Quat::IDENTITY,
+            inv_mass: 10.0,
+            // Thin along y: its spin about y is all but free, and no pull turns it.
+            inv_inertia: Mat3::from_diagonal(Vec3::new(1.0 / inertia, 1e6, 1.0 / inertia)),
+        };
+        let joint = |load: f32, arm: Vec3| {
+            let mut j = random_joint(&mut crate::rng::Rnd(1), JointRows::Spherical, STATIC, 0);
+            (j.rb, j.load) = (arm, load);
+            j
+        };
+        let joints = [joint(100.0, Vec3::Y * 0.1), joint(50.0, Vec3::Y * -0.1)];
+        let omega = tension_omega(&joints, &[rod], &mut Vec::new());
+        let expected = (150.0 * 0.1 / inertia).sqrt();
+        assert!(
+            (omega - expected).abs() < 1e-3 * expected,
+            "{omega} against {expected}"
+        );
+        // Unloaded joints ring at nothing.
+        let idle = [joint(0.0, Vec3::Y * 0.1)];
+        assert_eq!(tension_omega(&idle, &[rod], &mut Vec::new()), 0.0);
     }
 
     #[test]
