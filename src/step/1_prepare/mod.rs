@@ -28,8 +28,8 @@ use crate::world::{BodyFrame, ColliderEntry, ContactFilter, NO_PARENT, PhysicsWo
 pub use compound::BodyPart;
 use compound::{Part, PartItem, PartScratch, compound_mass, own_part, part_entry};
 pub use fixed::{InFixedSet, sync_fixed_set};
-use gather::MassInput;
 use gather::{BodyInput, gather_body};
+use gather::{MassInput, mass_properties};
 use hierarchy::{ChainQuery, parent_frame, unsupported, world_transform};
 use impulses::apply_impulse;
 pub use impulses::clear_impulses;
@@ -160,7 +160,8 @@ pub fn prepare_bodies(
             admit_static(&mut commands, world, &item, &tf, &mut scratch, &part_items);
             continue;
         }
-        let vel = item.velocity.copied().unwrap_or(Velocity::ZERO);
+        // By reference: a local copy was read back wider than it was written, and waited.
+        let vel = item.velocity.unwrap_or(&Velocity::ZERO);
         let shape = item.collider.map(|c| scaled_shape(entity, c, &tf));
         // Colliders on its children make it a compound body. (Cleared only when used:
         // parts hold shapes, so clearing runs their drop even when empty.)
@@ -192,7 +193,7 @@ pub fn prepare_bodies(
         );
         let checked = check_body(&BodyChecks {
             tf: &tf,
-            vel: &vel,
+            vel,
             kind,
             mass: item.mass,
             shape: shape.as_ref(),
@@ -209,7 +210,7 @@ pub fn prepare_bodies(
         }
         let mut rot = tf.rotation.normalize();
         let mut pos = tf.translation;
-        let mut vel = vel;
+        let mut vel = *vel;
         let (mut driven, mut target) = (false, None);
         if kind == RigidBody::Kinematic
             && let Some(last) = last_poses.get(&entity)
@@ -242,6 +243,24 @@ pub fn prepare_bodies(
             },
             _ => (Vec3::ZERO, Quat::IDENTITY),
         };
+        let mass_props = compound.map_or_else(
+            || {
+                let input = MassInput {
+                    mass: item.mass,
+                    density: item.density,
+                    inertia: item.angular_inertia,
+                };
+                mass_properties(shape.as_ref(), &input)
+            },
+            |c| (c.mass, c.moments),
+        );
+        if dynamic {
+            let given = (item.mass.is_some(), item.angular_inertia.is_some());
+            if let Err(e) = validate_mass_properties(mass_props.0, mass_props.1, given) {
+                reject(&mut commands, entity, e);
+                continue;
+            }
+        }
         let input = BodyInput {
             entity,
             kind,
@@ -250,7 +269,7 @@ pub fn prepare_bodies(
             } else {
                 pos + rot * com
             },
-            props: compound.map(|c| (c.mass, c.moments)),
+            mass_props,
             round: compound.is_none()
                 && matches!(shape, None | Some(Shape::Sphere { .. }))
                 && com == Vec3::ZERO,
@@ -260,31 +279,20 @@ pub fn prepare_bodies(
                 (rot * frame).normalize()
             },
             vel,
-            mass: MassInput {
-                mass: item.mass,
-                density: item.density,
-                inertia: item.angular_inertia,
-            },
-            shape: shape.as_ref(),
             force: item.force,
             damping,
             gravity_scale: item.gravity_scale.map_or(1.0, |g| g.0),
             rotation_locked: item.lock_rotation || !effects.rotation,
+            sleep_time: item.sleep_timer.map_or(0.0, |t| t.0),
+            driven,
+            target,
         };
-        let (mut state, solver) = gather_body(input, &settings);
-        if kind == RigidBody::Dynamic {
-            let mass = solver.inv_mass.recip();
-            let given = (item.mass.is_some(), item.angular_inertia.is_some());
-            if let Err(e) = validate_mass_properties(mass, state.inertia, given) {
-                reject(&mut commands, entity, e);
-                continue;
-            }
-        }
-        state.sleep_time = item.sleep_timer.map_or(0.0, |t| t.0);
-        state.driven = driven;
-        state.target = target;
-        world.bodies.push(state);
-        world.solver_bodies.push(solver);
+        gather_body(
+            input,
+            &settings,
+            &mut world.bodies,
+            &mut world.solver_bodies,
+        );
         // On the stored records: borrowing the locals for an out-of-line call kept the
         // 192-byte state on the stack and copied it three times (+25 ns a body).
         if let Some(j) = item.impulse.as_mut().filter(|j| dynamic && !j.is_zero()) {
