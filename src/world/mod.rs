@@ -12,6 +12,7 @@ mod contact_batch;
 mod fixed_set;
 mod joint;
 mod manifold;
+mod warm_start_cache;
 
 pub(crate) use awake_tree::AwakeTree;
 pub(crate) use batching::{ContactBatches, LANES, NO_CONTACT, SolveStep, moved_by_contacts};
@@ -24,6 +25,7 @@ pub(crate) use contact_batch::{ContactBatch, PointLanes};
 pub(crate) use fixed_set::FixedSet;
 pub(crate) use joint::{JointConstraint, JointRows, ordered_pair};
 pub(crate) use manifold::{MAX_POINTS, Manifold};
+pub(crate) use warm_start_cache::WarmStartCache;
 
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
@@ -254,7 +256,7 @@ pub struct PhysicsWorld {
     pub(crate) rolling_arms: Vec<RollingArms>,
     /// Last step's accumulated impulses by entity pair (and triangle, for a mesh pair:
     /// [`Manifold::sub`]), for warm starting.
-    pub(crate) impulse_cache: HashMap<(Entity, Entity, u32), Manifold>,
+    pub(crate) impulse_cache: WarmStartCache,
     /// This step's joints (empty in a scene without any).
     pub(crate) joints: Vec<JointConstraint>,
     /// Body pairs (ordered by entity) held by a joint that keeps them from colliding.

@@ -130,7 +130,8 @@ pub fn prepare_bodies(
     world.parent_frames.clear();
     // Filled by the collision stages only when collisions are on.
     world.pairs.clear();
-    world.manifolds.clear();
+    // Last step's manifolds become the warm-start cache the narrow phase reads.
+    world.impulse_cache.take_over(&mut world.manifolds);
     world.sensor_overlaps.clear();
 
     // Kinematic poses tumble wrote last step: a kinematic body whose Transform differs

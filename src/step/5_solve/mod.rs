@@ -482,13 +482,10 @@ fn store_impulses(world: &mut PhysicsWorld) {
             mp.approach_speed = (-cp.relative_velocity).max(0.0);
         }
     }
-    world.impulse_cache.clear();
-    for m in &world.manifolds {
-        let key = (
-            world.colliders[m.a as usize].entity,
-            world.colliders[m.b as usize].entity,
-            m.sub,
-        );
-        world.impulse_cache.insert(key, *m);
-    }
+    let colliders = &world.colliders;
+    let key = |m: &crate::world::Manifold| {
+        let entity = |i: u32| colliders[i as usize].entity;
+        (entity(m.a), entity(m.b), m.sub)
+    };
+    world.impulse_cache.index(&world.manifolds, key);
 }
