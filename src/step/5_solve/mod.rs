@@ -256,12 +256,7 @@ fn run_stage(
             if joints {
                 scratch.joints.prepare(bodies, &world.joints, use_bias);
             }
-            let passes = if use_bias {
-                iterations
-            } else {
-                relax_passes(iterations, joints)
-            };
-            for _ in 0..passes {
+            for _ in 0..iterations {
                 // Joints first, then contacts (Box2D's order): the contacts have the
                 // last word on what touches. Of the joints, the limits and motors first,
                 // then the rows that hold them together.
@@ -455,23 +450,6 @@ pub fn limit_spin(w: Vec3, dt: f32) -> Vec3 {
 pub fn iterations_for(setting: u32, max_ratio: f32) -> u32 {
     let extra = max_ratio.max(1.0).log10().ceil() as u32;
     setting.max(1).max(extra.min(8))
-}
-
-/// Relax passes a substep, after `iterations` solve passes. The relax pass takes out the
-/// velocity the push-out left; on loads up to 100:1 one sweep does (Box2D v3 relaxes
-/// once), and the second sweep only carried GS's lag a level further: the large pyramid
-/// (5,050 cubes, two solve passes) steps 18 % faster with one, and its top cube moved
-/// 0.19 m in 220 steps instead of 0.25. Beyond 100:1, and with joints, every pass
-/// stays: with one, a 1 kg box squeezed into a wall by a 1000 kg one went 14.7 mm in
-/// (tests/continuous.rs), a heavy ball landing on a light box gained 0.6 % of its energy
-/// (tests/regress_squeezed_box_restitution.rs), and the taut bridge's planks rang up to
-/// 6 m/s (tests/regress_dependent_joint_rows.rs).
-pub fn relax_passes(iterations: u32, joints: bool) -> u32 {
-    if iterations == 2 && !joints {
-        1
-    } else {
-        iterations
-    }
 }
 
 /// Marks and lists the dynamic and kinematic bodies that any manifold or joint touches.
