@@ -13,8 +13,8 @@ pub(crate) type PairKey = (Entity, Entity, u32);
 /// start of a step, not copied), and an index from each pair to its place.
 ///
 /// The index holds a 4-byte place, not the 268-byte manifold: copying each manifold into
-/// a map every step was a third of the large pyramid's hashing and moving (15,000
-/// manifolds, 4 MB a step through the cache).
+/// a map every step (15,000 manifolds, 4 MB a step on the large pyramid) held 2.4 % of
+/// that scene's samples in the map's inserts, and more in `memmove`.
 #[derive(Default, Debug)]
 pub(crate) struct WarmStartCache {
     /// Last step's manifolds, in last step's order.

@@ -62,7 +62,8 @@ pub struct MassInput<'a> {
 ///
 /// Written straight into the arrays: built in a local and returned, the 192-byte state
 /// was written field by field and read back in 16-byte pieces at once, and the reads
-/// waited on the writes (store forwarding fails; a sixth of the gather's time).
+/// waited on the writes (store forwarding fails). With the velocity's copy, such waits
+/// held 12 % of 1,000 free balls' step samples; prepare took 40 %.
 #[inline]
 pub(super) fn gather_body(
     b: BodyInput,

@@ -242,12 +242,22 @@ mod tests {
         for _ in 0..90 {
             app.update();
         }
+        // Hand this step's manifolds to the warm-start cache, as the next step's
+        // prepare would, so the runs below warm-start from them.
+        let mut world = app.world_mut().resource_mut::<PhysicsWorld>();
+        let mut last = world.manifolds.clone();
+        world.impulse_cache.take_over(&mut last);
         let world = app.world().resource::<PhysicsWorld>();
         let settings = app.world().resource::<SolverSettings>();
         assert!(world.pairs.len() > 500, "{} pairs", world.pairs.len());
         let mut whole = Found::default();
         collide_run(world, settings, &world.pairs, &mut whole);
         assert!(whole.manifolds.len() > 100);
+        let warm = whole.manifolds.iter().flat_map(|m| m.points());
+        assert!(
+            warm.filter(|p| p.normal_impulse > 0.0).count() > 100,
+            "the runs start from last step's impulses"
+        );
         for runs in [2, 3, 7] {
             let mut joined = Found::default();
             for pairs in world.pairs.chunks(world.pairs.len().div_ceil(runs)) {
