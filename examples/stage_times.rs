@@ -1,7 +1,8 @@
 //! Where a scene's step spends its time: loads a scene file, runs it headless (one step
 //! per update, sleeping off as in `peers/`), and prints each stage's median wall
 //! time over the timed steps with the step's counts (substeps, manifolds) and how far
-//! the bodies moved (the largest displacement of any body since it was spawned).
+//! the bodies moved (the largest displacement of any body since it was spawned) and how
+//! many still move at the end.
 //!
 //! ```sh
 //! cargo run --release --example stage_times -- peers/scenes/large_pyramid.scene.ron 30 100
@@ -74,5 +75,15 @@ fn main() {
     println!(
         "  largest displacement {:.3} m (by {d}, from {from})",
         d.length()
+    );
+    let speeds: Vec<f32> = bodies
+        .iter()
+        .filter_map(|&e| app.world().get::<Velocity>(e).map(|v| v.linear.length()))
+        .collect();
+    let fast = speeds.iter().filter(|&&s| s > 0.1).count();
+    let fastest = speeds.iter().copied().fold(0.0, f32::max);
+    println!(
+        "  at the end: {fast} of {} bodies faster than 0.1 m/s, the fastest {fastest:.3} m/s",
+        speeds.len()
     );
 }

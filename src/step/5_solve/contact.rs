@@ -164,7 +164,8 @@ pub fn prepare_constraints(
             .sum::<f32>()
             .max(weight);
         let size = pair_size(&ca.shape, &cb.shape);
-        let (softness, r) = contact_softness(&stiffness, sa.inv_mass, sb.inv_mass, load, size);
+        let (softness, r) =
+            contact_softness(&stiffness, sa.inv_mass, sb.inv_mass, load, weight, size);
         max_ratio = max_ratio.max(r);
         let arm = [
             sphere_arm(ca, spin[0], centre(ca)),

@@ -4,8 +4,10 @@
 //! lighter body's mass. Resting under a load of mass M it sinks by r·g/ω² (r = M/m_eff,
 //! ω = 2πf), whatever the bodies' size. Two things follow:
 //! - **Heavy loads** (a heavy box on a light one, a light box carrying a stack): the
-//!   frequency rises by √r and the damping ratio by √r, which keeps the load's own
-//!   damping ratio at ζ (without it the load rides an under-damped spring and bounces).
+//!   frequency rises by √r. The damping ratio rises by √ of the heaviest touching body's
+//!   mass ratio, which keeps a heavy body's own damping ratio at ζ (without it the load
+//!   rides an under-damped spring and bounces); a load carried through a stack of equal
+//!   bodies leaves it at ζ (see [`contact_softness`]).
 //! - **Small bodies**: a fixed sag is a large fraction of a small body (0.3 mm is 1.5 % of
 //!   a 2 cm cube). So each contact also asks for the frequency that holds its sag to
 //!   `max_sag` of the smaller body's size: f ≥ √(r·g / (max_sag·L)) / 2π.
@@ -93,19 +95,29 @@ pub fn wanted_hertz(
 }
 
 /// The contact's softness (its wanted frequency capped at `max_hertz`) and its load
-/// ratio r.
+/// ratio r. `pressing_impulse` is the weight, per substep, of the heaviest body touching
+/// either side: the damping ratio grows as √ of that body's mass over the lighter one's,
+/// so that a heavy body riding a light one keeps its own damping ratio at ζ. A load
+/// carried through a stack of bodies like these does not raise it: each body of the
+/// stack is damped by its own contacts, and a bottom contact made nearly rigid by
+/// ζ·√r (ζ ≈ 100 under 100 cubes, mass scale 0.997) is one that two Gauss–Seidel passes
+/// cannot converge. Measured on the 5,050-cube pyramid: with the carried load in ζ, 3,778
+/// cubes still moved faster than 0.1 m/s at step 220 and the top cube was 0.25 m off;
+/// without it, none (the fastest 0.04 m/s) and 0.19 m.
 pub fn contact_softness(
     p: &ContactParams,
     inv_mass_a: f32,
     inv_mass_b: f32,
     load_impulse: f32,
+    pressing_impulse: f32,
     size: f32,
 ) -> (Softness, f32) {
     let w = wanted_hertz(p, inv_mass_a, inv_mass_b, load_impulse, size, true);
     if w.hertz == 0.0 {
         return (Softness::new(0.0, 0.0, p.h), w.ratio);
     }
-    let zeta = p.damping_ratio * w.ratio.sqrt();
+    let pressing = wanted_hertz(p, inv_mass_a, inv_mass_b, pressing_impulse, size, true);
+    let zeta = p.damping_ratio * pressing.ratio.sqrt();
     (Softness::new(w.hertz.min(p.max_hertz), zeta, p.h), w.ratio)
 }
 
@@ -254,6 +266,28 @@ mod tests {
         assert_eq!(w.hertz, 60.0);
         assert!(w.needed < 16.0, "{}", w.needed);
         assert_eq!(substeps_for(w.needed, 1.0 / 60.0, 4, 16), 4);
+    }
+
+    #[test]
+    fn a_carried_load_stiffens_a_contact_but_only_a_heavy_body_damps_it_more() {
+        // A 1 kg cube on the floor under a stack of 50 more (the load its impulses
+        // show), and the same cube under one 50 kg block.
+        let (p, h) = (params(1.0 / 240.0), 1.0 / 240.0);
+        let (one, fifty) = (9.81 * h, 50.0 * 9.81 * h);
+        let (stacked, r) = contact_softness(&p, 0.0, 1.0, fifty, one, 1.0);
+        let (pressed, r_pressed) = contact_softness(&p, 0.0, 1.0, fifty, fifty, 1.0);
+        assert!((r - 50.0).abs() < 1e-3 && (r_pressed - 50.0).abs() < 1e-3);
+        // Both at the cap (60 Hz wanted ×√50); the stack's damping ratio stays at ζ.
+        assert_eq!(stacked, Softness::new(p.max_hertz, p.damping_ratio, h));
+        let zeta = p.damping_ratio * 50f32.sqrt();
+        let expected = Softness::new(p.max_hertz, zeta, h);
+        // (r is 50 to f32 round-off.)
+        assert!(
+            (pressed.bias_rate / expected.bias_rate - 1.0).abs() < 1e-5,
+            "{pressed:?}"
+        );
+        assert!((pressed.impulse_scale / expected.impulse_scale - 1.0).abs() < 1e-5);
+        assert!(pressed.mass_scale > stacked.mass_scale);
     }
 
     #[test]
