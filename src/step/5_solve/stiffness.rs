@@ -71,14 +71,8 @@ pub fn wanted_hertz(
             ratio: 1.0,
         };
     }
-    let light = 1.0 / hi;
-    let heavy = if lo > 0.0 { 1.0 / lo } else { light };
-    let carried = if p.gravity > 0.0 {
-        load_impulse / (p.gravity * p.h)
-    } else {
-        0.0
-    };
-    let r = (heavy.max(carried) / light).max(1.0);
+    let (light, heavy) = pair_masses(lo, hi);
+    let r = load_ratio(p, lo, hi, load_impulse);
     let base = if lo == 0.0 { 2.0 * p.hertz } else { p.hertz };
     // The sag rule reads the load its impulses show only for a resting contact (an
     // impact's impulse looks like a huge load for one step, and would buy substeps for
@@ -92,6 +86,25 @@ pub fn wanted_hertz(
         needed,
         ratio: r,
     }
+}
+
+/// The lighter and the heavier mass of a pair from the smaller and larger inverse mass
+/// (a fixed body counts as heavy as the other).
+fn pair_masses(lo: f32, hi: f32) -> (f32, f32) {
+    let light = 1.0 / hi;
+    (light, if lo > 0.0 { 1.0 / lo } else { light })
+}
+
+/// The load ratio r: the heavier of the pair's other mass and the mass that `impulse` (per
+/// substep of `p.h`) holds up, over the lighter mass; at least 1.
+fn load_ratio(p: &ContactParams, lo: f32, hi: f32, impulse: f32) -> f32 {
+    let (light, heavy) = pair_masses(lo, hi);
+    let carried = if p.gravity > 0.0 {
+        impulse / (p.gravity * p.h)
+    } else {
+        0.0
+    };
+    (heavy.max(carried) / light).max(1.0)
 }
 
 /// The contact's softness (its wanted frequency capped at `max_hertz`) and its load
@@ -116,8 +129,8 @@ pub fn contact_softness(
     if w.hertz == 0.0 {
         return (Softness::new(0.0, 0.0, p.h), w.ratio);
     }
-    let pressing = wanted_hertz(p, inv_mass_a, inv_mass_b, pressing_impulse, size, true);
-    let zeta = p.damping_ratio * pressing.ratio.sqrt();
+    let (lo, hi) = (inv_mass_a.min(inv_mass_b), inv_mass_a.max(inv_mass_b));
+    let zeta = p.damping_ratio * load_ratio(p, lo, hi, pressing_impulse).sqrt();
     (Softness::new(w.hertz.min(p.max_hertz), zeta, p.h), w.ratio)
 }
 
