@@ -14,12 +14,11 @@ mod joint_forces;
 mod split;
 #[cfg(test)]
 mod split_tests;
+mod steps;
 mod stiffness;
 mod wide;
 #[cfg(test)]
 mod wide_tests;
-
-use std::ops::Range;
 
 use bevy::prelude::*;
 
@@ -27,19 +26,21 @@ use crate::effects::Effects;
 use crate::math::{FreeStep, Inertial, Softness, free_substep, rotate};
 use crate::settings::{Gravity, Integrator, SolverSettings};
 use crate::world::{
-    ContactBatches, ContactConstraint, ContactParams, PhysicsWorld, RollingArms, STATIC, SolveStep,
-    SolverBody, is_isotropic, world_inv_inertia,
+    ContactBatches, ContactConstraint, ContactParams, PhysicsWorld, STATIC, is_isotropic,
+    world_inv_inertia,
 };
 
 pub use contact::{prepare_constraints, refresh_rows, sum_impulses};
 pub use continuous::sweep_against_fixed;
-pub use iterate::{apply_restitution, solve_listed, stop_approach, warm_start_listed};
+pub use iterate::{apply_restitution, stop_approach};
+#[cfg(feature = "bench-internals")]
+pub(crate) use iterate::{solve_listed, warm_start_listed};
 use joint::{solve_joints, warm_start_joints};
 use joint_direct::JointSystem;
 use joint_forces::store_joint_forces;
+pub(crate) use steps::{solve_steps, warm_start_steps};
 use stiffness::{HELD_MAX_RATE, JOINT_DAMPING_RATIO, MAX_TENSION_TURN, joint_hertz, tension_omega};
 pub use stiffness::{pair_size, substeps_for, wanted_hertz};
-pub use wide::{solve_batches, warm_start_batches};
 
 /// The solver's stages in execution order. `PrepareContacts` runs once per step; the
 /// five substep stages run `substeps` times; `Restitution` and `StoreImpulses` once.
@@ -81,6 +82,9 @@ pub struct SolverScratch {
     joints: JointSystem,
     /// Working space for [`tension_omega`].
     tension: Vec<(u32, f32)>,
+    /// This step's normal sweeps over the batches and batches solved, all passes
+    /// together (see [`PhysicsWorld::normal_sweeps_per_batch`]).
+    work: [u64; 2],
 }
 
 /// Solves every contact of this step.
@@ -99,6 +103,7 @@ pub fn solve_contacts(
         return;
     }
     let scratch = &mut *scratch;
+    scratch.work = [0, 0];
     collect_active_bodies(world, &mut scratch.active);
     for &i in &scratch.active {
         let (b, s) = (
@@ -271,8 +276,9 @@ fn run_stage(
                     (0..steps, scratch.split[0]),
                     (0..fixed_steps, scratch.split[1]),
                 ] {
-                    if split {
+                    let work = if split {
                         let runner = split::Runner::Pool;
+                        let work = &mut scratch.work;
                         split::solve_steps(
                             runner,
                             bodies,
@@ -282,10 +288,14 @@ fn run_stage(
                             arms,
                             h,
                             use_bias,
+                            work,
                         );
+                        [0, 0]
                     } else {
-                        solve_steps(bodies, constraints, batches, range, arms, h, use_bias);
-                    }
+                        solve_steps(bodies, constraints, batches, range, arms, h, use_bias)
+                    };
+                    scratch.work[0] += u64::from(work[0]);
+                    scratch.work[1] += u64::from(work[1]);
                 }
             }
         }
@@ -321,50 +331,9 @@ fn run_stage(
             stop_approach(bodies, &mut world.constraints[..fixed], &world.rolling_arms);
         }
         SolverStage::StoreImpulses => {
+            world.normal_sweeps = scratch.work;
             store_impulses(world);
             store_joint_forces(&mut world.joints, &world.solver_bodies, h);
-        }
-    }
-}
-
-/// Warm starts the contacts of `steps` (see [`SolveStep`]) on this thread (`split` has
-/// the same on two).
-pub(crate) fn warm_start_steps(
-    bodies: &mut [SolverBody],
-    constraints: &[ContactConstraint],
-    batches: &ContactBatches,
-    steps: Range<usize>,
-) {
-    for step in &batches.steps[steps] {
-        match step {
-            SolveStep::Batches(r) => {
-                let points = &batches.points[batches.points_of(r)];
-                warm_start_batches(bodies, &batches.batches[r.clone()], points);
-            }
-            SolveStep::Scalar(c) => warm_start_listed(bodies, constraints, &[*c]),
-        }
-    }
-}
-
-/// One pass of the contacts of `steps` (see [`SolveStep`]) on this thread (`split` has
-/// the same on two).
-pub(crate) fn solve_steps(
-    bodies: &mut [SolverBody],
-    constraints: &mut [ContactConstraint],
-    batches: &mut ContactBatches,
-    steps: Range<usize>,
-    arms: &[RollingArms],
-    h: f32,
-    use_bias: bool,
-) {
-    for step in &batches.steps[steps] {
-        match step {
-            SolveStep::Batches(r) => {
-                let range = batches.points_of(r);
-                let points = &mut batches.points[range];
-                solve_batches(bodies, &batches.batches[r.clone()], points, h, use_bias);
-            }
-            SolveStep::Scalar(c) => solve_listed(bodies, constraints, &[*c], arms, h, use_bias),
         }
     }
 }

@@ -247,7 +247,8 @@ pub(crate) fn warm_start_steps(
     run(runner, view, &batches.steps[steps], &chunk, serial)
 }
 
-/// [`solve_steps`](super::solve_steps), split.
+/// [`solve_steps`](super::solve_steps), split: its normal sweeps and batches are added
+/// to `work`. Returns how many chunks the helper ran.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_steps(
     runner: Runner,
@@ -258,6 +259,7 @@ pub(crate) fn solve_steps(
     arms: &[RollingArms],
     h: f32,
     use_bias: bool,
+    work: &mut [u64; 2],
 ) -> u32 {
     let ContactBatches {
         batches: list,
@@ -268,10 +270,13 @@ pub(crate) fn solve_steps(
     let points = Shared::new(points);
     let list = &list[..];
     let points_of = |r: &Range<usize>| list[r.start].first as usize..list[r.end - 1].range().end;
+    let (sweeps, solved) = (AtomicU64::new(0), AtomicU64::new(0));
     let chunk = |view: &mut SharedBodies, r: Range<usize>| {
         // SAFETY: a chunk's points are its batches' own; no other chunk has them.
         let points = unsafe { points.slice(points_of(&r)) };
-        solve_batches(view, &list[r], points, h, use_bias);
+        solved.fetch_add(r.len() as u64, Ordering::Relaxed);
+        let n = solve_batches(view, &list[r], points, h, use_bias);
+        sweeps.fetch_add(u64::from(n), Ordering::Relaxed);
     };
     let serial = |view: &mut SharedBodies, step: &SolveStep| match step {
         SolveStep::Batches(r) => chunk(view, r.clone()),
@@ -282,5 +287,8 @@ pub(crate) fn solve_steps(
         }
     };
     let view = SharedBodies::new(bodies);
-    run(runner, view, &all[steps], &chunk, serial)
+    let helped = run(runner, view, &all[steps], &chunk, serial);
+    work[0] += sweeps.into_inner();
+    work[1] += solved.into_inner();
+    helped
 }

@@ -33,7 +33,7 @@ fn split_passes_leave_the_one_thread_bits() {
         assert_same(&one, &two, &format!("round {round}: warm start"));
         for (pass, use_bias) in [true, false, true].into_iter().enumerate() {
             for range in [0..steps, 0..fixed_steps] {
-                solve_steps(
+                let serial = solve_steps(
                     &mut one,
                     &mut c1,
                     &mut batches,
@@ -43,7 +43,15 @@ fn split_passes_leave_the_one_thread_bits() {
                     use_bias,
                 );
                 let (b, c, s) = (&mut two, &mut c2, &mut split_batches);
-                helped += split::solve_steps(Runner::Thread, b, c, s, range, &[], h, use_bias);
+                let mut work = [0, 0];
+                helped +=
+                    split::solve_steps(Runner::Thread, b, c, s, range, &[], h, use_bias, &mut work);
+                // The same work, however the levels were shared out.
+                assert_eq!(
+                    work,
+                    serial.map(u64::from),
+                    "round {round}, pass {pass}: work"
+                );
             }
             assert_same(&one, &two, &format!("round {round}, pass {pass}"));
         }

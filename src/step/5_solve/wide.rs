@@ -142,22 +142,24 @@ pub fn warm_start_batches(
 }
 
 /// [`solve_listed`](super::iterate::solve_listed) over the batches (contacts without a
-/// rolling motion).
-/// `points` starts at the first batch's.
+/// rolling motion). `points` starts at the first batch's. Returns the sweeps over the
+/// batches' normal rows, all batches together (each batch sweeps at least once).
 pub fn solve_batches(
     bodies: &mut (impl BodyView + ?Sized),
     batches: &[ContactBatch],
     points: &mut [PointLanes],
     h: f32,
     use_bias: bool,
-) {
+) -> u32 {
     let inv_h = F4::splat(1.0 / h);
     let base = batches.first().map_or(0, |b| b.first as usize);
+    let mut sweeps = 0;
     for c in batches {
         let range = c.range();
         let points = &mut points[range.start - base..range.end - base];
-        solve_batch(bodies, c, points, inv_h, use_bias);
+        sweeps += solve_batch(bodies, c, points, inv_h, use_bias);
     }
+    sweeps
 }
 
 #[inline(always)]
@@ -167,7 +169,7 @@ fn solve_batch(
     point: &mut [PointLanes],
     inv_h: F4,
     use_bias: bool,
-) {
+) -> u32 {
     let (zero, one) = (F4::ZERO, F4::ONE);
     let (mut a, mut b) = (
         BodyLanes::gather(bodies, c.a),
@@ -192,6 +194,7 @@ fn solve_batch(
     // point, at most NORMAL_SWEEPS, none after a settled or capped one).
     let multi = c.has[1];
     let mut active = c.has[0];
+    let mut sweeps = 0;
     for sweep in 0..NORMAL_SWEEPS {
         if sweep > 0 {
             active = active & multi;
@@ -199,6 +202,7 @@ fn solve_batch(
         if active.none() {
             break;
         }
+        sweeps += 1;
         let (mut largest, mut total, mut capped) = (zero, zero, zero);
         for k in 0..n {
             let (p, s) = (&mut point[k], separation[k]);
@@ -261,4 +265,5 @@ fn solve_batch(
     }
     a.scatter(bodies, c.a, c.moved[0]);
     b.scatter(bodies, c.b, c.moved[1]);
+    sweeps
 }

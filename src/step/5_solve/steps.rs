@@ -1,0 +1,54 @@
+//! The contact passes over a step's [`SolveStep`]s on one thread: batches side by side in
+//! lanes, the rest by the scalar pass (`split.rs` shares them between two).
+
+use std::ops::Range;
+
+use super::iterate::{solve_listed, warm_start_listed};
+use super::wide::{solve_batches, warm_start_batches};
+use crate::world::{ContactBatches, ContactConstraint, RollingArms, SolveStep, SolverBody};
+
+/// Warm starts the contacts of `steps` (see [`SolveStep`]) on this thread (`split` has
+/// the same on two).
+pub(crate) fn warm_start_steps(
+    bodies: &mut [SolverBody],
+    constraints: &[ContactConstraint],
+    batches: &ContactBatches,
+    steps: Range<usize>,
+) {
+    for step in &batches.steps[steps] {
+        match step {
+            SolveStep::Batches(r) => {
+                let points = &batches.points[batches.points_of(r)];
+                warm_start_batches(bodies, &batches.batches[r.clone()], points);
+            }
+            SolveStep::Scalar(c) => warm_start_listed(bodies, constraints, &[*c]),
+        }
+    }
+}
+
+/// One pass of the contacts of `steps` (see [`SolveStep`]) on this thread (`split` has
+/// the same on two). Returns the batches' normal sweeps and the batches solved.
+pub(crate) fn solve_steps(
+    bodies: &mut [SolverBody],
+    constraints: &mut [ContactConstraint],
+    batches: &mut ContactBatches,
+    steps: Range<usize>,
+    arms: &[RollingArms],
+    h: f32,
+    use_bias: bool,
+) -> [u32; 2] {
+    let mut work = [0, 0];
+    for step in &batches.steps[steps] {
+        match step {
+            SolveStep::Batches(r) => {
+                let range = batches.points_of(r);
+                let points = &mut batches.points[range];
+                let list = &batches.batches[r.clone()];
+                work[0] += solve_batches(bodies, list, points, h, use_bias);
+                work[1] += list.len() as u32;
+            }
+            SolveStep::Scalar(c) => solve_listed(bodies, constraints, &[*c], arms, h, use_bias),
+        }
+    }
+    work
+}
