@@ -54,6 +54,21 @@ pub(crate) struct ContactBatches {
     order: Vec<u32>,
 }
 
+/// Work a contact pass did over its batches: sweeps over their normal rows, and batches
+/// solved (see [`PhysicsWorld::normal_sweeps_per_batch`](super::PhysicsWorld::normal_sweeps_per_batch)).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SolveWork {
+    pub sweeps: u64,
+    pub batches: u64,
+}
+
+impl std::ops::AddAssign for SolveWork {
+    fn add_assign(&mut self, other: Self) {
+        self.sweeps += other.sweeps;
+        self.batches += other.batches;
+    }
+}
+
 /// Whether the solver moves body `i`: a dynamic body (a kinematic one has no inverse
 /// mass or inertia, so no contact changes its velocity, and like the static body it may
 /// sit in every lane of a batch).

@@ -15,7 +15,9 @@ mod manifold;
 mod warm_start_cache;
 
 pub(crate) use awake_tree::AwakeTree;
-pub(crate) use batching::{ContactBatches, LANES, NO_CONTACT, SolveStep, moved_by_contacts};
+pub(crate) use batching::{
+    ContactBatches, LANES, NO_CONTACT, SolveStep, SolveWork, moved_by_contacts,
+};
 pub(crate) use body_view::{BodyView, Shared, SharedBodies};
 pub(crate) use constraint::{
     Anchoring, AngularRow, ConstraintPoint, ContactConstraint, ContactParams, NO_ROLL, RollingArms,
@@ -279,8 +281,8 @@ pub struct PhysicsWorld {
     pub(crate) substeps: u32,
     /// Solve and relax passes per substep in the last step.
     pub(crate) iterations: u32,
-    /// Normal sweeps over the batches and batches solved in the last step, all passes.
-    pub(crate) normal_sweeps: [u64; 2],
+    /// The contact passes' work over the batches in the last step, all passes together.
+    pub(crate) solve_work: SolveWork,
     /// Steps taken since the plugin started.
     pub(crate) step_count: u64,
 }
@@ -309,7 +311,7 @@ impl PhysicsWorld {
     /// count of the contact solver's work that does not depend on the machine's speed,
     /// for comparing changes on a noisy one (`examples/stage_times` prints it).
     pub fn normal_sweeps_per_batch(&self) -> f32 {
-        let [sweeps, batches] = self.normal_sweeps;
+        let SolveWork { sweeps, batches } = self.solve_work;
         if batches == 0 {
             0.0
         } else {

@@ -26,8 +26,8 @@ use crate::effects::Effects;
 use crate::math::{FreeStep, Inertial, Softness, free_substep, rotate};
 use crate::settings::{Gravity, Integrator, SolverSettings};
 use crate::world::{
-    ContactBatches, ContactConstraint, ContactParams, PhysicsWorld, STATIC, is_isotropic,
-    world_inv_inertia,
+    ContactBatches, ContactConstraint, ContactParams, PhysicsWorld, STATIC, SolveWork,
+    is_isotropic, world_inv_inertia,
 };
 
 pub use contact::{prepare_constraints, refresh_rows, sum_impulses};
@@ -82,9 +82,6 @@ pub struct SolverScratch {
     joints: JointSystem,
     /// Working space for [`tension_omega`].
     tension: Vec<(u32, f32)>,
-    /// This step's normal sweeps over the batches and batches solved, all passes
-    /// together (see [`PhysicsWorld::normal_sweeps_per_batch`]).
-    work: [u64; 2],
 }
 
 /// Solves every contact of this step.
@@ -98,12 +95,12 @@ pub fn solve_contacts(
 ) {
     let world = &mut *world;
     let dt = world.dt;
+    world.solve_work = SolveWork::default();
     if (world.manifolds.is_empty() && world.joints.is_empty()) || dt <= 0.0 {
         world.impulse_cache.clear();
         return;
     }
     let scratch = &mut *scratch;
-    scratch.work = [0, 0];
     collect_active_bodies(world, &mut scratch.active);
     for &i in &scratch.active {
         let (b, s) = (
@@ -278,8 +275,7 @@ fn run_stage(
                 ] {
                     let work = if split {
                         let runner = split::Runner::Pool;
-                        let work = &mut scratch.work;
-                        split::solve_steps(
+                        let (work, _) = split::solve_steps(
                             runner,
                             bodies,
                             constraints,
@@ -288,14 +284,12 @@ fn run_stage(
                             arms,
                             h,
                             use_bias,
-                            work,
                         );
-                        [0, 0]
+                        work
                     } else {
                         solve_steps(bodies, constraints, batches, range, arms, h, use_bias)
                     };
-                    scratch.work[0] += u64::from(work[0]);
-                    scratch.work[1] += u64::from(work[1]);
+                    world.solve_work += work;
                 }
             }
         }
@@ -331,7 +325,6 @@ fn run_stage(
             stop_approach(bodies, &mut world.constraints[..fixed], &world.rolling_arms);
         }
         SolverStage::StoreImpulses => {
-            world.normal_sweeps = scratch.work;
             store_impulses(world);
             store_joint_forces(&mut world.joints, &world.solver_bodies, h);
         }

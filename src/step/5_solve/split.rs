@@ -14,7 +14,8 @@ use std::sync::atomic::{AtomicU32, AtomicU64, Ordering};
 use super::iterate::{solve_listed, warm_start_listed};
 use super::wide::{solve_batches, warm_start_batches};
 use crate::world::{
-    ContactBatches, ContactConstraint, RollingArms, Shared, SharedBodies, SolveStep, SolverBody,
+    ContactBatches, ContactConstraint, RollingArms, Shared, SharedBodies, SolveStep, SolveWork,
+    SolverBody,
 };
 
 /// The chunks a wide level is cut into, at most: enough for two threads to even out.
@@ -247,8 +248,8 @@ pub(crate) fn warm_start_steps(
     run(runner, view, &batches.steps[steps], &chunk, serial)
 }
 
-/// [`solve_steps`](super::solve_steps), split: its normal sweeps and batches are added
-/// to `work`. Returns how many chunks the helper ran.
+/// [`solve_steps`](super::solve_steps), split. Returns the work over the batches (the
+/// same as on one thread) and how many chunks the helper ran.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_steps(
     runner: Runner,
@@ -259,8 +260,7 @@ pub(crate) fn solve_steps(
     arms: &[RollingArms],
     h: f32,
     use_bias: bool,
-    work: &mut [u64; 2],
-) -> u32 {
+) -> (SolveWork, u32) {
     let ContactBatches {
         batches: list,
         points,
@@ -288,7 +288,9 @@ pub(crate) fn solve_steps(
     };
     let view = SharedBodies::new(bodies);
     let helped = run(runner, view, &all[steps], &chunk, serial);
-    work[0] += sweeps.into_inner();
-    work[1] += solved.into_inner();
-    helped
+    let work = SolveWork {
+        sweeps: sweeps.into_inner(),
+        batches: solved.into_inner(),
+    };
+    (work, helped)
 }

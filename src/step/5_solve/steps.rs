@@ -5,7 +5,9 @@ use std::ops::Range;
 
 use super::iterate::{solve_listed, warm_start_listed};
 use super::wide::{solve_batches, warm_start_batches};
-use crate::world::{ContactBatches, ContactConstraint, RollingArms, SolveStep, SolverBody};
+use crate::world::{
+    ContactBatches, ContactConstraint, RollingArms, SolveStep, SolveWork, SolverBody,
+};
 
 /// Warm starts the contacts of `steps` (see [`SolveStep`]) on this thread (`split` has
 /// the same on two).
@@ -27,7 +29,7 @@ pub(crate) fn warm_start_steps(
 }
 
 /// One pass of the contacts of `steps` (see [`SolveStep`]) on this thread (`split` has
-/// the same on two). Returns the batches' normal sweeps and the batches solved.
+/// the same on two). Returns the work it did over the batches.
 pub(crate) fn solve_steps(
     bodies: &mut [SolverBody],
     constraints: &mut [ContactConstraint],
@@ -36,16 +38,16 @@ pub(crate) fn solve_steps(
     arms: &[RollingArms],
     h: f32,
     use_bias: bool,
-) -> [u32; 2] {
-    let mut work = [0, 0];
+) -> SolveWork {
+    let mut work = SolveWork::default();
     for step in &batches.steps[steps] {
         match step {
             SolveStep::Batches(r) => {
                 let range = batches.points_of(r);
                 let points = &mut batches.points[range];
                 let list = &batches.batches[r.clone()];
-                work[0] += solve_batches(bodies, list, points, h, use_bias);
-                work[1] += list.len() as u32;
+                work.sweeps += u64::from(solve_batches(bodies, list, points, h, use_bias));
+                work.batches += list.len() as u64;
             }
             SolveStep::Scalar(c) => solve_listed(bodies, constraints, &[*c], arms, h, use_bias),
         }
