@@ -42,6 +42,7 @@ fn main() {
     let mut stages = vec![Vec::with_capacity(timed); STAGES.len()];
     let (mut total, mut counts) = (Vec::new(), (0, 0, 0, 0));
     let mut sweeps = Vec::with_capacity(timed);
+    let mut reused = 0;
     for _ in 0..timed {
         app.update();
         let t = app.world().resource::<StepTimings>();
@@ -51,6 +52,7 @@ fn main() {
         total.push(t.total_ms());
         let w = app.world().resource::<PhysicsWorld>();
         sweeps.push(f64::from(w.normal_sweeps_per_batch()));
+        reused += w.reused_manifolds();
         counts = (
             counts.0.max(w.substeps()),
             counts.1.max(w.iterations()),
@@ -64,6 +66,8 @@ fn main() {
     // Work, not time: the same on any machine, however busy.
     let mean_sweeps = sweeps.iter().sum::<f64>() / sweeps.len().max(1) as f64;
     println!("  normal sweeps per batch and pass {mean_sweeps:.3} (mean over the timed steps)");
+    let reused = reused as f64 / timed.max(1) as f64;
+    println!("  manifolds reused, moved from the step before: {reused:.0} a step (mean)");
     for (name, s) in STAGES.iter().zip(&mut stages) {
         println!("  {name:<14} {:8.3} ms", median(s));
     }

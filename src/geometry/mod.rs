@@ -242,7 +242,7 @@ pub fn collide(
 /// line whose ends fly off. So a coincident pair is collided as if `b` sat a thousandth
 /// of the smaller shape's size away, in a direction hashed from the two entities: the
 /// pile's pairs push every which way and it spreads as a ball. Returns that offset.
-fn coincident_nudge(a: &ColliderEntry, b: &ColliderEntry) -> Option<Vec3> {
+pub(crate) fn coincident_nudge(a: &ColliderEntry, b: &ColliderEntry) -> Option<Vec3> {
     let scale = 0.5e-3 * a.shape.thickness().min(b.shape.thickness());
     if !scale.is_finite() || a.pos.distance_squared(b.pos) > scale * scale {
         return None;

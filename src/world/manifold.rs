@@ -46,6 +46,34 @@ pub(crate) struct Manifold {
     /// Combined material of the pair.
     pub friction: f32,
     pub restitution: f32,
+    /// Where the points sit on each collider, for a later step to reuse the manifold
+    /// while the pair's relative pose barely changes (box pairs only; see the narrow
+    /// phase's `reuse`).
+    pub anchors: Anchors,
+}
+
+/// A manifold's points fixed to its two colliders as the shape code found them, each in
+/// its collider's own frame: rigid motion of the pair moves them exactly, so while the
+/// pair's relative pose stays within a small tolerance of this one, the manifold can be
+/// moved instead of found again. `found == false`: nothing recorded (not a box pair).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Anchors {
+    /// Each point on A's surface (point − normal·separation/2), A's frame, m.
+    pub a: [Vec3; MAX_POINTS],
+    /// Each point on B's surface (point + normal·separation/2), B's frame, m.
+    pub b: [Vec3; MAX_POINTS],
+    /// Each point's separation when found, m.
+    pub separation: [f32; MAX_POINTS],
+    /// The normal in A's frame.
+    pub normal: Vec3,
+    /// B's rotation relative to A's when found (A⁻¹·B).
+    pub relative_rotation: Quat,
+    /// The distance up to which points were kept when found (margin plus reach), m.
+    pub cutoff: f32,
+    /// The two boxes' half extents when found, m (a resized box is collided afresh).
+    pub half_extents: [Vec3; 2],
+    /// Whether the rest holds anything.
+    pub found: bool,
 }
 
 impl Manifold {

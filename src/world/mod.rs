@@ -26,7 +26,7 @@ pub(crate) use constraint::{
 pub(crate) use contact_batch::{ContactBatch, PointLanes};
 pub(crate) use fixed_set::FixedSet;
 pub(crate) use joint::{JointConstraint, JointRows, ordered_pair};
-pub(crate) use manifold::{MAX_POINTS, Manifold};
+pub(crate) use manifold::{Anchors, MAX_POINTS, Manifold};
 pub(crate) use warm_start_cache::WarmStartCache;
 
 use bevy::platform::collections::HashMap;
@@ -283,6 +283,9 @@ pub struct PhysicsWorld {
     pub(crate) iterations: u32,
     /// The contact passes' work over the batches in the last step, all passes together.
     pub(crate) solve_work: SolveWork,
+    /// Of the last step's manifolds, those moved from the step before instead of found
+    /// again (see the narrow phase's `reuse`).
+    pub(crate) reused_manifolds: usize,
     /// Steps taken since the plugin started.
     pub(crate) step_count: u64,
 }
@@ -317,6 +320,12 @@ impl PhysicsWorld {
         } else {
             (sweeps as f64 / batches as f64) as f32
         }
+    }
+
+    /// Of the last step's contact manifolds, how many were last step's moved with their
+    /// two boxes instead of found again (box pairs whose relative pose barely changed).
+    pub fn reused_manifolds(&self) -> usize {
+        self.reused_manifolds
     }
 
     /// Contact points of the last step's manifolds.

@@ -21,6 +21,8 @@ pub(crate) struct WarmStartCache {
     manifolds: Vec<Manifold>,
     /// Each pair's place in `manifolds`.
     index: HashMap<PairKey, u32>,
+    /// Each manifold's pair, in `manifolds`' order (see [`Self::find`]).
+    keys: Vec<PairKey>,
     /// Whether `index` was made from the array the next [`Self::take_over`] takes.
     indexed: bool,
 }
@@ -31,8 +33,11 @@ impl WarmStartCache {
     pub(crate) fn index(&mut self, manifolds: &[Manifold], key: impl Fn(&Manifold) -> PairKey) {
         self.index.clear();
         self.index.reserve(manifolds.len());
+        self.keys.clear();
         for (i, m) in manifolds.iter().enumerate() {
-            self.index.insert(key(m), i as u32);
+            let k = key(m);
+            self.index.insert(k, i as u32);
+            self.keys.push(k);
         }
         self.indexed = true;
     }
@@ -48,21 +53,31 @@ impl WarmStartCache {
         }
     }
 
-    /// The manifold a pair had last step. None between [`Self::index`] and
+    /// The manifold a pair had last step, looked for first at place `next`, and `next`
+    /// moved after the place found. None between [`Self::index`] and
     /// [`Self::take_over`], while the index names places in an array the cache does not
-    /// hold yet.
+    /// hold yet. The narrow phase visits pairs in the same order every step and last step's
+    /// manifolds are in that order, so a pair's manifold is nearly always the one after
+    /// the last found: one sequential read instead of a hash-map probe (whose cache miss
+    /// on 15,000 manifolds was 2 % of the large pyramid's samples).
     #[inline]
-    pub(crate) fn get(&self, key: &PairKey) -> Option<&Manifold> {
+    pub(crate) fn find(&self, key: &PairKey, next: &mut usize) -> Option<&Manifold> {
         if self.indexed {
             return None;
         }
-        let i = *self.index.get(key)?;
-        debug_assert!((i as usize) < self.manifolds.len(), "indexed, then cut");
-        self.manifolds.get(i as usize)
+        let i = if self.keys.get(*next) == Some(key) {
+            *next
+        } else {
+            *self.index.get(key)? as usize
+        };
+        *next = i + 1;
+        debug_assert!(i < self.manifolds.len(), "indexed, then cut");
+        self.manifolds.get(i)
     }
 
     /// Forgets everything (no contacts this step).
     pub(crate) fn clear(&mut self) {
+        self.keys.clear();
         self.index.clear();
         self.manifolds.clear();
         self.indexed = false;
@@ -87,15 +102,26 @@ mod tests {
         let mut cache = WarmStartCache::default();
         let mut manifolds = vec![manifold(0), manifold(7)];
         cache.index(&manifolds, key);
-        assert!(cache.get(&(e1, e2, 7)).is_none(), "not taken over yet");
+        assert!(
+            cache.find(&(e1, e2, 7), &mut 0).is_none(),
+            "not taken over yet"
+        );
         cache.take_over(&mut manifolds);
         assert!(manifolds.is_empty());
-        assert_eq!(cache.get(&(e1, e2, 7)).map(|m| m.sub), Some(7));
-        assert!(cache.get(&(e2, e1, 7)).is_none());
+        assert_eq!(cache.find(&(e1, e2, 7), &mut 0).map(|m| m.sub), Some(7));
+        assert!(cache.find(&(e2, e1, 7), &mut 0).is_none());
+        // Looked for where it is, or anywhere else: found, and the next place is after it.
+        for hint in [0, 1, 5, usize::MAX] {
+            let mut next = hint;
+            assert_eq!(cache.find(&(e1, e2, 0), &mut next).map(|m| m.sub), Some(0));
+            assert_eq!(next, 1);
+            assert_eq!(cache.find(&(e1, e2, 7), &mut next).map(|m| m.sub), Some(7));
+            assert_eq!(next, 2);
+        }
         // A step that found manifolds but never indexed them: nothing stale is found.
         manifolds.push(manifold(3));
         cache.take_over(&mut manifolds);
-        assert!(cache.get(&(e1, e2, 7)).is_none());
-        assert!(cache.get(&(e1, e2, 0)).is_none());
+        assert!(cache.find(&(e1, e2, 7), &mut 0).is_none());
+        assert!(cache.find(&(e1, e2, 0), &mut 0).is_none());
     }
 }

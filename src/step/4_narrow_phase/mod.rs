@@ -4,7 +4,8 @@
 //! solver can stop bodies exactly where they meet, however fast they are.
 //!
 //! Warm starting: each new point looks up last step's impulses of the same pair and
-//! feature id.
+//! feature id. A box pair that has barely moved relative to itself since its manifold
+//! was found keeps that manifold, moved with the two boxes (see `reuse`).
 
 use bevy::prelude::*;
 
@@ -12,6 +13,10 @@ use crate::geometry::{collide, collide_each, has_mesh};
 use crate::limits::MAX_MANIFOLDS_PER_STEP;
 use crate::settings::SolverSettings;
 use crate::world::{ColliderEntry, Manifold, PhysicsWorld, STATIC};
+
+mod reuse;
+#[cfg(test)]
+mod reuse_tests;
 
 /// Candidate pairs from which the narrow phase splits them between the compute pool's
 /// threads (each run of pairs into its own lists, joined in pair order: the same result
@@ -26,6 +31,8 @@ struct Found {
     manifolds: Vec<Manifold>,
     sensor_overlaps: Vec<Manifold>,
     wake: Vec<Entity>,
+    /// How many of `manifolds` were last step's, moved.
+    reused: usize,
     /// The manifold cap was reached (the rest of the pairs wait).
     full: bool,
 }
@@ -35,9 +42,14 @@ pub fn collide_pairs(
     mut world: ResMut<PhysicsWorld>,
     settings: Res<SolverSettings>,
     mut capped: Local<bool>,
+    mut speeds: Local<Vec<f32>>,
 ) {
     let world = &mut *world;
     world.manifolds.clear();
+    // Each collider's closing speed, once (a collider is in several pairs).
+    speeds.clear();
+    speeds.extend(world.colliders.iter().map(|c| closing_speed(world, c)));
+    let speeds = &*speeds;
     let threads = bevy::tasks::ComputeTaskPool::try_get().map_or(1, |p| p.thread_num());
     let mut found = None;
     if threads >= 2 && world.pairs.len() >= PARALLEL_PAIRS_FROM {
@@ -48,7 +60,7 @@ pub fn collide_pairs(
                 let settings = &*settings;
                 scope.spawn(async move {
                     let mut run = Found::default();
-                    collide_run(shared, settings, pairs, &mut run);
+                    collide_run(shared, settings, speeds, pairs, &mut run);
                     run
                 });
             }
@@ -60,6 +72,7 @@ pub fn collide_pairs(
     }
     let full = match found {
         Some(runs) => {
+            world.reused_manifolds = runs.iter().map(|r| r.reused).sum();
             for run in runs {
                 world.manifolds.extend(run.manifolds);
                 world.sensor_overlaps.extend(run.sensor_overlaps);
@@ -72,9 +85,11 @@ pub fn collide_pairs(
                 manifolds: std::mem::take(&mut world.manifolds),
                 sensor_overlaps: std::mem::take(&mut world.sensor_overlaps),
                 wake: std::mem::take(&mut world.wake),
+                reused: 0,
                 full: false,
             };
-            collide_run(world, &settings, &world.pairs, &mut run);
+            collide_run(world, &settings, speeds, &world.pairs, &mut run);
+            world.reused_manifolds = run.reused;
             world.manifolds = run.manifolds;
             world.sensor_overlaps = run.sensor_overlaps;
             world.wake = run.wake;
@@ -90,14 +105,19 @@ pub fn collide_pairs(
     *capped = full;
 }
 
-/// The narrow phase of a run of pairs, into `out`.
+/// The narrow phase of a run of pairs, into `out`; `speeds`: each collider's
+/// [`closing_speed`], m/s.
 fn collide_run(
     world: &PhysicsWorld,
     settings: &SolverSettings,
+    speeds: &[f32],
     pairs: &[(u32, u32)],
     out: &mut Found,
 ) {
     let dt = world.dt;
+    // Where in last step's manifolds the next pair's is likely to be (see
+    // `WarmStartCache::find`).
+    let mut next = 0;
     for &(ia, ib) in pairs {
         if out.manifolds.len() == MAX_MANIFOLDS_PER_STEP {
             out.full = true;
@@ -125,7 +145,7 @@ fn collide_run(
                 _ => None,
             };
             if let Some((s, is, k, ik)) = sleeper {
-                let reach = dt * closing_speed(world, k);
+                let reach = dt * speeds[ik as usize];
                 let margin = settings.margin_for(k.shape.pair_thickness(&s.shape));
                 if collide(k, ik, s, is, margin + reach).is_some() {
                     out.wake.push(s.owner);
@@ -142,23 +162,24 @@ fn collide_run(
         } else {
             None
         };
-        let reach = dt * (closing_speed(world, a) + closing_speed(world, b));
+        let reach = dt * (speeds[ia as usize] + speeds[ib as usize]);
         let margin = settings.margin_for(a.shape.pair_thickness(&b.shape));
+        let cutoff = margin + reach;
         let (colliders, cache) = (&world.colliders, &world.impulse_cache);
+        let key = |m: &Manifold| {
+            let entity = |i: u32| colliders[i as usize].entity;
+            (entity(m.a), entity(m.b), m.sub)
+        };
         let manifolds = &mut out.manifolds;
         let mut found = false;
-        let mut take = |mut m: Manifold| {
+        // `warm`: last step's manifold of the pair, whose impulses this one starts from.
+        let mut take = |mut m: Manifold, warm: Option<&Manifold>| {
             found = true;
             let (fa, ra) = a.filter.combine;
             let (fb, rb) = b.filter.combine;
             m.friction = fa.pair(fb).apply(a.friction, b.friction).max(0.0);
             m.restitution = ra.pair(rb).apply(a.restitution, b.restitution);
-            let key = (
-                colliders[m.a as usize].entity,
-                colliders[m.b as usize].entity,
-                m.sub,
-            );
-            if let Some(cached) = cache.get(&key) {
+            if let Some(cached) = warm {
                 warm_start_from(&mut m, cached, margin);
             }
             if manifolds.len() < MAX_MANIFOLDS_PER_STEP {
@@ -166,11 +187,26 @@ fn collide_run(
             }
         };
         // Convex pairs (nearly all) without the indirect call a mesh's several manifolds
-        // need.
+        // need; box pairs that barely moved keep last step's manifold, moved (its
+        // impulses with it).
         if has_mesh(&a.shape, &b.shape) {
-            collide_each(a, ia, b, ib, margin + reach, &mut take);
-        } else if let Some(m) = collide(a, ia, b, ib, margin + reach) {
-            take(m);
+            collide_each(a, ia, b, ib, cutoff, &mut |m| {
+                let warm = cache.find(&key(&m), &mut next);
+                take(m, warm);
+            });
+        } else if reuse::reusable(a, b) {
+            let cached = cache.find(&(a.entity, b.entity, 0), &mut next);
+            let moved = cached.and_then(|c| reuse::reuse(c, (a, ia), (b, ib), margin, cutoff));
+            if let Some(m) = moved {
+                out.reused += 1;
+                take(m, None);
+            } else if let Some(mut m) = collide(a, ia, b, ib, cutoff) {
+                reuse::anchor(&mut m, a, b, cutoff);
+                take(m, cached);
+            }
+        } else if let Some(m) = collide(a, ia, b, ib, cutoff) {
+            let warm = cache.find(&key(&m), &mut next);
+            take(m, warm);
         }
         if found && let Some(e) = wake {
             out.wake.push(e);
@@ -250,8 +286,13 @@ mod tests {
         let world = app.world().resource::<PhysicsWorld>();
         let settings = app.world().resource::<SolverSettings>();
         assert!(world.pairs.len() > 500, "{} pairs", world.pairs.len());
+        let speeds: Vec<f32> = world
+            .colliders
+            .iter()
+            .map(|c| closing_speed(world, c))
+            .collect();
         let mut whole = Found::default();
-        collide_run(world, settings, &world.pairs, &mut whole);
+        collide_run(world, settings, &speeds, &world.pairs, &mut whole);
         assert!(whole.manifolds.len() > 100);
         let warm = whole.manifolds.iter().flat_map(|m| m.points());
         assert!(
@@ -262,7 +303,7 @@ mod tests {
             let mut joined = Found::default();
             for pairs in world.pairs.chunks(world.pairs.len().div_ceil(runs)) {
                 let mut run = Found::default();
-                collide_run(world, settings, pairs, &mut run);
+                collide_run(world, settings, &speeds, pairs, &mut run);
                 joined.manifolds.extend(run.manifolds);
                 joined.wake.extend(run.wake);
             }
