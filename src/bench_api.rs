@@ -156,8 +156,8 @@ impl ContactPass {
             let batches = &mut self.batches;
             warm_start_steps(bodies, constraints, batches, 0..n);
             let fixed = batches.fixed_steps;
-            solve_steps(bodies, constraints, batches, 0..n, &[], h, true);
-            solve_steps(bodies, constraints, batches, 0..fixed, &[], h, true);
+            solve_steps(bodies, constraints, batches, 0..n, &[], h, true, true);
+            solve_steps(bodies, constraints, batches, 0..fixed, &[], h, true, false);
         } else {
             let all: Vec<u32> = (0..constraints.len() as u32).collect();
             warm_start_listed(bodies, constraints, &all);

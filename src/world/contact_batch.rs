@@ -32,6 +32,9 @@ pub(crate) struct PointLanes {
     pub max_normal_impulse: F4,
     /// See [`ConstraintPoint::relative_velocity`], m/s.
     pub relative_velocity: F4,
+    /// The separation now (positions move only between substeps), as the first pass
+    /// after they moved measured it, m.
+    pub separation: F4,
 }
 
 /// Four contacts that share no body the solver moves, lane by lane.
@@ -87,6 +90,7 @@ impl PointLanes {
         tangent_impulse: [F4::ZERO; 2],
         max_normal_impulse: F4::ZERO,
         relative_velocity: F4::ZERO,
+        separation: F4::ZERO,
     };
 
     fn set(&mut self, l: usize, p: &ConstraintPoint) {

@@ -258,7 +258,7 @@ fn run_stage(
             if joints {
                 scratch.joints.prepare(bodies, &world.joints, use_bias);
             }
-            for _ in 0..iterations {
+            for it in 0..iterations {
                 // Joints first, then contacts (Box2D's order): the contacts have the
                 // last word on what touches. Of the joints, the limits and motors first,
                 // then the rows that hold them together.
@@ -269,9 +269,11 @@ fn run_stage(
                 let (arms, constraints) = (&world.rolling_arms, &mut world.constraints);
                 let batches = &mut scratch.batches;
                 let (steps, fixed_steps) = (batches.steps.len(), batches.fixed_steps);
-                for (range, split) in [
-                    (0..steps, scratch.split[0]),
-                    (0..fixed_steps, scratch.split[1]),
+                // The first pass over all contacts measures the separations (positions
+                // moved in the substep's last stage); the rest reuse them.
+                for (range, split, measure) in [
+                    (0..steps, scratch.split[0], it == 0),
+                    (0..fixed_steps, scratch.split[1], false),
                 ] {
                     let work = if split {
                         let runner = split::Runner::Pool;
@@ -284,10 +286,20 @@ fn run_stage(
                             arms,
                             h,
                             use_bias,
+                            measure,
                         );
                         work
                     } else {
-                        solve_steps(bodies, constraints, batches, range, arms, h, use_bias)
+                        solve_steps(
+                            bodies,
+                            constraints,
+                            batches,
+                            range,
+                            arms,
+                            h,
+                            use_bias,
+                            measure,
+                        )
                     };
                     world.solve_work += work;
                 }

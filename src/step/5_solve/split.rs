@@ -260,6 +260,7 @@ pub(crate) fn solve_steps(
     arms: &[RollingArms],
     h: f32,
     use_bias: bool,
+    measure: bool,
 ) -> (SolveWork, u32) {
     let ContactBatches {
         batches: list,
@@ -275,7 +276,7 @@ pub(crate) fn solve_steps(
         // SAFETY: a chunk's points are its batches' own; no other chunk has them.
         let points = unsafe { points.slice(points_of(&r)) };
         solved.fetch_add(r.len() as u64, Ordering::Relaxed);
-        let n = solve_batches(view, &list[r], points, h, use_bias);
+        let n = solve_batches(view, &list[r], points, h, use_bias, measure);
         sweeps.fetch_add(u64::from(n), Ordering::Relaxed);
     };
     let serial = |view: &mut SharedBodies, step: &SolveStep| match step {

@@ -29,7 +29,9 @@ pub(crate) fn warm_start_steps(
 }
 
 /// One pass of the contacts of `steps` (see [`SolveStep`]) on this thread (`split` has
-/// the same on two). Returns the work it did over the batches.
+/// the same on two); `measure`: the bodies moved since the last pass (see
+/// [`solve_batches`]). Returns the work it did over the batches.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_steps(
     bodies: &mut [SolverBody],
     constraints: &mut [ContactConstraint],
@@ -38,6 +40,7 @@ pub(crate) fn solve_steps(
     arms: &[RollingArms],
     h: f32,
     use_bias: bool,
+    measure: bool,
 ) -> SolveWork {
     let mut work = SolveWork::default();
     for step in &batches.steps[steps] {
@@ -46,7 +49,7 @@ pub(crate) fn solve_steps(
                 let range = batches.points_of(r);
                 let points = &mut batches.points[range];
                 let list = &batches.batches[r.clone()];
-                work.sweeps += u64::from(solve_batches(bodies, list, points, h, use_bias));
+                work.sweeps += u64::from(solve_batches(bodies, list, points, h, use_bias, measure));
                 work.batches += list.len() as u64;
             }
             SolveStep::Scalar(c) => solve_listed(bodies, constraints, &[*c], arms, h, use_bias),

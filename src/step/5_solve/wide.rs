@@ -9,13 +9,30 @@ use crate::world::{BodyView, ContactBatch, LANES, MAX_POINTS, PointLanes};
 
 use super::iterate::{NORMAL_SWEEPS, NORMAL_TOL};
 
-/// One side's bodies of a batch.
+/// One side's bodies of a batch: what the passes change and read.
 struct BodyLanes {
     v: V3,
     w: V3,
+    inv_mass: F4,
+}
+
+/// One side's bodies' motion since the step began: what the separations are measured
+/// from.
+struct PoseLanes {
     dp: V3,
     dq: Q4,
-    inv_mass: F4,
+}
+
+impl PoseLanes {
+    #[inline(always)]
+    fn gather(bodies: &(impl BodyView + ?Sized), index: [u32; LANES]) -> Self {
+        let (b0, b1) = (bodies.get(index[0]), bodies.get(index[1]));
+        let (b2, b3) = (bodies.get(index[2]), bodies.get(index[3]));
+        Self {
+            dp: V3::gather([b0.dp, b1.dp, b2.dp, b3.dp]),
+            dq: Q4::gather([b0.dq, b1.dq, b2.dq, b3.dq]),
+        }
+    }
 }
 
 impl BodyLanes {
@@ -26,8 +43,6 @@ impl BodyLanes {
         Self {
             v: V3::gather([b0.v, b1.v, b2.v, b3.v]),
             w: V3::gather([b0.w, b1.w, b2.w, b3.w]),
-            dp: V3::gather([b0.dp, b1.dp, b2.dp, b3.dp]),
-            dq: Q4::gather([b0.dq, b1.dq, b2.dq, b3.dq]),
             inv_mass: lanes([b0.inv_mass, b1.inv_mass, b2.inv_mass, b3.inv_mass]),
         }
     }
@@ -142,14 +157,18 @@ pub fn warm_start_batches(
 }
 
 /// [`solve_listed`](super::iterate::solve_listed) over the batches (contacts without a
-/// rolling motion). `points` starts at the first batch's. Returns the sweeps over the
-/// batches' normal rows, all batches together (each batch sweeps at least once).
+/// rolling motion). `points` starts at the first batch's. `measure`: the bodies have
+/// moved since the last pass, so measure the separations again (the scalar pass measures
+/// them in every pass; positions move only between substeps, so a stage's later passes,
+/// and the fixed contacts' second solve, reuse the same bits). Returns the sweeps over
+/// the batches' normal rows, all batches together (each batch sweeps at least once).
 pub fn solve_batches(
     bodies: &mut (impl BodyView + ?Sized),
     batches: &[ContactBatch],
     points: &mut [PointLanes],
     h: f32,
     use_bias: bool,
+    measure: bool,
 ) -> u32 {
     let inv_h = F4::splat(1.0 / h);
     let base = batches.first().map_or(0, |b| b.first as usize);
@@ -157,9 +176,27 @@ pub fn solve_batches(
     for c in batches {
         let range = c.range();
         let points = &mut points[range.start - base..range.end - base];
+        if measure {
+            measure_batch(bodies, c, points);
+        }
         sweeps += solve_batch(bodies, c, points, inv_h, use_bias);
     }
     sweeps
+}
+
+/// Each point's separation now, from the bodies' motion since the step began.
+#[inline(always)]
+fn measure_batch(bodies: &(impl BodyView + ?Sized), c: &ContactBatch, point: &mut [PointLanes]) {
+    let (a, b) = (
+        PoseLanes::gather(bodies, c.a),
+        PoseLanes::gather(bodies, c.b),
+    );
+    let dp = b.dp.sub(a.dp);
+    for p in point {
+        let ca = V3::select(c.turn[0], a.dq.rotate(p.ra), p.ra);
+        let cb = V3::select(c.turn[1], b.dq.rotate(p.rb), p.rb);
+        p.separation = c.normal.dot(dp.add(cb).sub(ca)) + p.adjusted_separation;
+    }
 }
 
 #[inline(always)]
@@ -176,19 +213,14 @@ fn solve_batch(
         BodyLanes::gather(bodies, c.b),
     );
     let n = point.len();
-    let dp = b.dp.sub(a.dp);
-    let mut separation = [zero; MAX_POINTS];
     let mut normal = [RowLanes {
         ra: V3::ZERO,
         rb: V3::ZERO,
         ia: V3::ZERO,
         ib: V3::ZERO,
     }; MAX_POINTS];
-    for ((s, row), p) in separation.iter_mut().zip(&mut normal).zip(&*point) {
+    for (row, p) in normal.iter_mut().zip(&*point) {
         *row = RowLanes::new(&c.inv_inertia, p, c.normal);
-        let ca = V3::select(c.turn[0], a.dq.rotate(p.ra), p.ra);
-        let cb = V3::select(c.turn[1], b.dq.rotate(p.rb), p.rb);
-        *s = c.normal.dot(dp.add(cb).sub(ca)) + p.adjusted_separation;
     }
     // The normal sweeps: a lane stops as the scalar pass does (one sweep for a single
     // point, at most NORMAL_SWEEPS, none after a settled or capped one).
@@ -205,7 +237,8 @@ fn solve_batch(
         sweeps += 1;
         let (mut largest, mut total, mut capped) = (zero, zero, zero);
         for k in 0..n {
-            let (p, s) = (&mut point[k], separation[k]);
+            let p = &mut point[k];
+            let s = p.separation;
             let on = active & c.has[k];
             let speculative = gt(s, zero);
             let (bias, mass_scale, impulse_scale) = if use_bias {
