@@ -75,6 +75,10 @@ pub struct SolverScratch {
     report: bool,
     /// This step's contacts packed into batches solved side by side.
     batches: ContactBatches,
+    /// The batches' separations were measured since the bodies last moved (see
+    /// [`solve_batches`](wide::solve_batches)): a substep's Relax measures them, and the
+    /// next substep's Solve, before which nothing moves, reads them.
+    measured: bool,
     /// Whether this step's passes over all contacts, and over the fixed ones, split their
     /// wide levels between threads (decided once a step: `split::worth_splitting`).
     split: [bool; 2],
@@ -218,6 +222,7 @@ fn run_stage(
             scratch.report = world.constraints.iter().any(|c| c.report);
             let fixed = scratch.fixed_constraints;
             scratch.batches.build(&world.constraints, bodies, fixed);
+            scratch.measured = false;
             let batches = &scratch.batches;
             let worth = |steps| split::worth_splitting(batches, &steps);
             scratch.split = [worth(0..batches.steps.len()), worth(0..batches.fixed_steps)];
@@ -269,10 +274,11 @@ fn run_stage(
                 let (arms, constraints) = (&world.rolling_arms, &mut world.constraints);
                 let batches = &mut scratch.batches;
                 let (steps, fixed_steps) = (batches.steps.len(), batches.fixed_steps);
-                // The first pass over all contacts measures the separations (positions
-                // moved in the substep's last stage); the rest reuse them.
+                // The first pass over all contacts measures the separations if the
+                // bodies moved since they were last measured; the rest reuse them.
+                let measure = it == 0 && !scratch.measured;
                 for (range, split, measure) in [
-                    (0..steps, scratch.split[0], it == 0),
+                    (0..steps, scratch.split[0], measure),
                     (0..fixed_steps, scratch.split[1], false),
                 ] {
                     let work = if split {
@@ -304,6 +310,7 @@ fn run_stage(
                     world.solve_work += work;
                 }
             }
+            scratch.measured = true;
         }
         SolverStage::IntegratePositions => {
             // The free increment plus the contact impulses' share, h·Δv and h·Δω. A
@@ -312,6 +319,7 @@ fn run_stage(
             // their bodies each substep (no test measured a difference; it is the
             // consistent kinematics).
             let turn_inertia = scratch.refresh || !world.joints.is_empty();
+            scratch.measured = false;
             for (&i, fs) in scratch.active.iter().zip(&scratch.free) {
                 let (b, s) = (&world.bodies[i as usize], &mut bodies[i as usize]);
                 s.dp += fs.dx + h * (s.v - fs.v);
