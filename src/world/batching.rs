@@ -20,6 +20,9 @@ use super::{ContactBatch, ContactConstraint, PointLanes, STATIC, SolverBody};
 
 /// Contacts solved side by side in one batch (SSE2's four f32 lanes).
 pub(crate) const LANES: usize = 4;
+/// The fewest contacts a batch is built for; a level's last few below it take the scalar
+/// pass.
+pub(crate) const MIN_LANES: usize = 2;
 /// A batch lane without a contact.
 pub(crate) const NO_CONTACT: u32 = u32::MAX;
 /// One step of a pass, in order.
@@ -28,7 +31,8 @@ pub(crate) enum SolveStep {
     /// Batches solved lane by lane, one after another.
     Batches(Range<usize>),
     /// One contact solved by the scalar pass: one with a rolling motion, with rows
-    /// refreshed every substep (a turning anisotropic body) or impulses reported.
+    /// refreshed every substep (a turning anisotropic body) or impulses reported, or one
+    /// of a level's last contacts too few for a batch ([`MIN_LANES`]).
     Scalar(u32),
 }
 
@@ -171,14 +175,21 @@ impl ContactBatches {
                     (lanes, n) = ([NO_CONTACT; LANES], 0);
                 }
             }
-            if n > 0 {
+            // A batch of few lanes costs about what a full one does: its contacts go to
+            // the scalar pass (the same bits; a chain or a tower has one contact a level).
+            let lone = if n >= MIN_LANES {
                 let batch = ContactBatch::new(constraints, bodies, lanes, &mut self.points);
                 self.batches.push(batch);
-            }
+                0
+            } else {
+                n
+            };
             if self.batches.len() > first {
                 self.steps
                     .push(SolveStep::Batches(first..self.batches.len()));
             }
+            self.steps
+                .extend(lanes[..lone].iter().map(|&c| SolveStep::Scalar(c)));
             let scalar = contacts
                 .iter()
                 .filter(|&&c| scalar_only(&constraints[c as usize]));
