@@ -6,7 +6,11 @@
 //!   box, and the total energy never rises above its start plus what overlap push-out
 //!   may add. Two envelopes run in CI at a fixed seed: the 50 m/s and 1:1000,
 //!   and a gentler 20 m/s and 1:100. Seeds 0–39 of both (`TUMBLE_PROPTEST_SEED`, 24
-//!   scenes each: 1,920 scenes) pass. That allowance, stated: each body that starts
+//!   scenes each: 1,920 scenes) passed when this was written; at `cd75d80` 6 of those 80
+//!   runs fail on "inside", each a body of 1.5–2.4 m a few millimetres past the sag bound
+//!   below in a corner or on the floor (the stiffness rule's `max_sag` lets a contact
+//!   sag 0.2 % of the body's size, which this bound predates; open in the performance
+//!   issue's note). The CI seed passes. The energy allowance, stated: each body that starts
 //!   overlapping another may be given at most ½·m·v_push² of kinetic energy (v_push =
 //!   `max_push_out`, the cap the share rule keeps every push below) and lifted by at
 //!   most the largest size in the scene, m·g·d_max.
