@@ -60,27 +60,18 @@ pub struct SweepAndPrune {
 impl SweepAndPrune {
     /// The overlapping pairs among `boxes` (min, max), each a body of its own.
     pub fn pairs(&mut self, boxes: &[(Vec3, Vec3)]) -> &[(u32, u32)] {
-        use crate::world::{ColliderEntry, ContactFilter};
+        use crate::world::ColliderEntry;
         self.colliders.truncate(boxes.len());
         while self.colliders.len() < boxes.len() {
             let i = self.colliders.len() as u32;
-            self.colliders.push(ColliderEntry {
-                entity: Entity::PLACEHOLDER,
-                owner: Entity::PLACEHOLDER,
-                key: i as u64,
-                body: i,
-                asleep: false,
-                shape: Shape::Sphere { radius: 0.5 },
-                offset: Vec3::ZERO,
-                local_rot: Quat::IDENTITY,
-                pos: Vec3::ZERO,
-                rot: Quat::IDENTITY,
-                friction: 0.5,
-                restitution: 0.0,
-                filter: ContactFilter::default(),
-                aabb_min: Vec3::ZERO,
-                aabb_max: Vec3::ZERO,
-            });
+            self.colliders.push(ColliderEntry::new(
+                Entity::PLACEHOLDER,
+                i as u64,
+                i,
+                Shape::Sphere { radius: 0.5 },
+                Vec3::ZERO,
+                Quat::IDENTITY,
+            ));
         }
         for (c, &(lo, hi)) in self.colliders.iter_mut().zip(boxes) {
             (c.aabb_min, c.aabb_max) = (lo, hi);

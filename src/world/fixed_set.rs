@@ -141,23 +141,8 @@ mod tests {
     use crate::collider::Collider;
 
     fn entry(entity: u32, collider: Collider, pos: Vec3) -> ColliderEntry {
-        ColliderEntry {
-            entity: Entity::from_raw_u32(entity).unwrap(),
-            owner: Entity::from_raw_u32(entity).unwrap(),
-            key: entity as u64,
-            body: 0,
-            asleep: false,
-            shape: collider.shape,
-            offset: Vec3::ZERO,
-            local_rot: Quat::IDENTITY,
-            pos,
-            rot: Quat::IDENTITY,
-            friction: 0.5,
-            restitution: 0.0,
-            filter: Default::default(),
-            aabb_min: Vec3::ZERO,
-            aabb_max: Vec3::ZERO,
-        }
+        let e = Entity::from_raw_u32(entity).unwrap();
+        ColliderEntry::new(e, entity as u64, 0, collider.shape, pos, Quat::IDENTITY)
     }
 
     fn query(set: &FixedSet, lo: Vec3, hi: Vec3) -> Vec<u32> {

@@ -177,6 +177,30 @@ impl Default for ContactFilter {
 }
 
 impl ColliderEntry {
+    /// A collider of its own (`owner` is itself) with `shape` at a pose, on body `body`
+    /// ([`STATIC`] for none): centred on the body's centre of mass, the default
+    /// friction, no restitution, the default filter, awake, bounds not yet computed.
+    /// The one constructor, so that a new field has one place to get its default.
+    pub fn new(entity: Entity, key: u64, body: u32, shape: Shape, pos: Vec3, rot: Quat) -> Self {
+        Self {
+            entity,
+            owner: entity,
+            key,
+            body,
+            asleep: false,
+            shape,
+            offset: Vec3::ZERO,
+            local_rot: Quat::IDENTITY,
+            pos,
+            rot,
+            friction: crate::body::DEFAULT_FRICTION,
+            restitution: 0.0,
+            filter: ContactFilter::default(),
+            aabb_min: Vec3::ZERO,
+            aabb_max: Vec3::ZERO,
+        }
+    }
+
     /// The body this collider belongs to, or `None` for a static collider.
     #[inline]
     pub fn body_entity(&self) -> Option<Entity> {

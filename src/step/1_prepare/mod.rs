@@ -320,22 +320,14 @@ pub fn prepare_bodies(
                 let inv = frame.inverse();
                 (inv * -com, inv)
             };
+            let key = order_key(entity, item.order);
             world.colliders.push(ColliderEntry {
-                entity,
-                owner: entity,
-                key: order_key(entity, item.order),
-                body: index,
-                asleep: false,
-                shape,
                 offset,
                 local_rot,
-                pos,
-                rot,
                 friction: item.friction.map_or(DEFAULT_FRICTION, |f| f.0),
                 restitution: item.restitution.map_or(0.0, |r| r.0),
                 filter: item.filter.get(),
-                aabb_min: Vec3::ZERO,
-                aabb_max: Vec3::ZERO,
+                ..ColliderEntry::new(entity, key, index, shape, pos, rot)
             });
         }
     }
@@ -465,22 +457,13 @@ fn fixed_entry(
     collider: &Collider,
     (friction, restitution, filter): (Option<&Friction>, Option<&Restitution>, ContactFilter),
 ) -> impl Fn(bool) -> ColliderEntry {
+    let shape = scaled_shape(entity, collider, tf);
+    let (pos, rot) = (tf.translation, tf.rotation.normalize());
     let entry = ColliderEntry {
-        entity,
-        owner: entity,
-        key,
-        body: STATIC,
-        asleep: false,
-        shape: scaled_shape(entity, collider, tf),
-        offset: Vec3::ZERO,
-        local_rot: Quat::IDENTITY,
-        pos: tf.translation,
-        rot: tf.rotation.normalize(),
         friction: friction.map_or(DEFAULT_FRICTION, |f| f.0),
         restitution: restitution.map_or(0.0, |r| r.0),
         filter,
-        aabb_min: Vec3::ZERO,
-        aabb_max: Vec3::ZERO,
+        ..ColliderEntry::new(entity, key, STATIC, shape, pos, rot)
     };
     move |asleep| ColliderEntry {
         asleep,
