@@ -139,7 +139,9 @@ impl ContactPass {
     /// Warm start and one solve pass (the fixed contacts again at its end), batched or
     /// scalar, on the working bodies and contacts (which carry over from run to run).
     pub fn run(&mut self, batched: bool) {
-        use crate::step::solve::{solve_listed, solve_steps, warm_start_listed, warm_start_steps};
+        use crate::step::solve::{
+            Pass, solve_listed, solve_steps, warm_start_listed, warm_start_steps,
+        };
         let (bodies, constraints) = (&mut self.bodies, &mut self.constraints);
         let h = self.h;
         if batched {
@@ -147,8 +149,13 @@ impl ContactPass {
             let batches = &mut self.batches;
             warm_start_steps(bodies, constraints, batches, 0..n);
             let fixed = batches.fixed_steps;
-            solve_steps(bodies, constraints, batches, 0..n, &[], h, true, true);
-            solve_steps(bodies, constraints, batches, 0..fixed, &[], h, true, false);
+            let pass = |measure| Pass {
+                h,
+                use_bias: true,
+                measure,
+            };
+            solve_steps(bodies, constraints, batches, 0..n, &[], pass(true));
+            solve_steps(bodies, constraints, batches, 0..fixed, &[], pass(false));
         } else {
             let all: Vec<u32> = (0..constraints.len() as u32).collect();
             warm_start_listed(bodies, constraints, &all);

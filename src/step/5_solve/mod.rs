@@ -38,7 +38,7 @@ pub(crate) use iterate::{solve_listed, warm_start_listed};
 use joint::{solve_joints, warm_start_joints};
 use joint_direct::JointSystem;
 use joint_forces::store_joint_forces;
-pub(crate) use steps::{solve_steps, warm_start_steps};
+pub(crate) use steps::{Pass, solve_steps, warm_start_steps};
 use stiffness::{HELD_MAX_RATE, JOINT_DAMPING_RATIO, MAX_TENSION_TURN, joint_hertz, tension_omega};
 pub use stiffness::{pair_size, substeps_for, wanted_hertz};
 
@@ -281,31 +281,17 @@ fn run_stage(
                     (0..steps, scratch.split[0], measure),
                     (0..fixed_steps, scratch.split[1], false),
                 ] {
+                    let pass = Pass {
+                        h,
+                        use_bias,
+                        measure,
+                    };
                     let work = if split {
                         let runner = split::Runner::Pool;
-                        let (work, _) = split::solve_steps(
-                            runner,
-                            bodies,
-                            constraints,
-                            batches,
-                            range,
-                            arms,
-                            h,
-                            use_bias,
-                            measure,
-                        );
-                        work
+                        let c = &mut *constraints;
+                        split::solve_steps(runner, bodies, c, batches, range, arms, pass).0
                     } else {
-                        solve_steps(
-                            bodies,
-                            constraints,
-                            batches,
-                            range,
-                            arms,
-                            h,
-                            use_bias,
-                            measure,
-                        )
+                        solve_steps(bodies, constraints, batches, range, arms, pass)
                     };
                     world.solve_work += work;
                 }

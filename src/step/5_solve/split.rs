@@ -12,6 +12,7 @@ use std::ops::Range;
 use std::sync::atomic::{AtomicU32, AtomicU64, Ordering};
 
 use super::iterate::{solve_listed, warm_start_listed};
+use super::steps::Pass;
 use super::wide::{solve_batches, warm_start_batches};
 use crate::world::{
     ContactBatches, ContactConstraint, RollingArms, Shared, SharedBodies, SolveStep, SolveWork,
@@ -250,7 +251,6 @@ pub(crate) fn warm_start_steps(
 
 /// [`solve_steps`](super::solve_steps), split. Returns the work over the batches (the
 /// same as on one thread) and how many chunks the helper ran.
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_steps(
     runner: Runner,
     bodies: &mut [SolverBody],
@@ -258,10 +258,13 @@ pub(crate) fn solve_steps(
     batches: &mut ContactBatches,
     steps: Range<usize>,
     arms: &[RollingArms],
-    h: f32,
-    use_bias: bool,
-    measure: bool,
+    pass: Pass,
 ) -> (SolveWork, u32) {
+    let Pass {
+        h,
+        use_bias,
+        measure,
+    } = pass;
     let ContactBatches {
         batches: list,
         points,

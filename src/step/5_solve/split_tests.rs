@@ -4,7 +4,7 @@
 
 use super::split::{self, Runner};
 use super::wide_tests::{assert_same, random_body, random_contact};
-use super::{solve_steps, warm_start_steps};
+use super::{Pass, solve_steps, warm_start_steps};
 use crate::rng::Rnd;
 use crate::world::{ContactBatches, ContactConstraint, SolverBody};
 
@@ -34,19 +34,14 @@ fn split_passes_leave_the_one_thread_bits() {
         for (pass, use_bias) in [true, false, true].into_iter().enumerate() {
             // Nothing moves the bodies between passes: only the first measures.
             for (range, measure) in [(0..steps, pass == 0), (0..fixed_steps, false)] {
-                let serial = solve_steps(
-                    &mut one,
-                    &mut c1,
-                    &mut batches,
-                    range.clone(),
-                    &[],
+                let kind = Pass {
                     h,
                     use_bias,
                     measure,
-                );
+                };
+                let serial = solve_steps(&mut one, &mut c1, &mut batches, range.clone(), &[], kind);
                 let (b, c, s) = (&mut two, &mut c2, &mut split_batches);
-                let (work, ran) =
-                    split::solve_steps(Runner::Thread, b, c, s, range, &[], h, use_bias, measure);
+                let (work, ran) = split::solve_steps(Runner::Thread, b, c, s, range, &[], kind);
                 helped += ran;
                 // The same work, however the levels were shared out.
                 assert_eq!(work, serial, "round {round}, pass {pass}: work");

@@ -28,20 +28,32 @@ pub(crate) fn warm_start_steps(
     }
 }
 
+/// What one contact pass is: its substep, whether it is soft with bias (Solve) or rigid
+/// (Relax), and whether the bodies moved since the separations were last measured (see
+/// [`solve_batches`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Pass {
+    /// Substep, s.
+    pub h: f32,
+    pub use_bias: bool,
+    pub measure: bool,
+}
+
 /// One pass of the contacts of `steps` (see [`SolveStep`]) on this thread (`split` has
-/// the same on two); `measure`: the bodies moved since the last pass (see
-/// [`solve_batches`]). Returns the work it did over the batches.
-#[allow(clippy::too_many_arguments)]
+/// the same on two). Returns the work it did over the batches.
 pub(crate) fn solve_steps(
     bodies: &mut [SolverBody],
     constraints: &mut [ContactConstraint],
     batches: &mut ContactBatches,
     steps: Range<usize>,
     arms: &[RollingArms],
-    h: f32,
-    use_bias: bool,
-    measure: bool,
+    pass: Pass,
 ) -> SolveWork {
+    let Pass {
+        h,
+        use_bias,
+        measure,
+    } = pass;
     let mut work = SolveWork::default();
     for step in &batches.steps[steps] {
         match step {

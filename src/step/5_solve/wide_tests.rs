@@ -6,7 +6,7 @@
 use bevy::prelude::*;
 
 use super::iterate::{solve_listed, warm_start_listed};
-use super::{solve_steps, warm_start_steps};
+use super::{Pass, solve_steps, warm_start_steps};
 use crate::math::Softness;
 use crate::rng::Rnd;
 use crate::world::{
@@ -167,16 +167,12 @@ fn batched_passes_compute_the_scalar_passes_bit_for_bit() {
             ];
             for (range, list, measure) in lists {
                 let c = &mut constraints;
-                solve_steps(
-                    &mut lanes,
-                    c,
-                    &mut batches,
-                    range,
-                    &[],
+                let kind = Pass {
                     h,
                     use_bias,
                     measure,
-                );
+                };
+                solve_steps(&mut lanes, c, &mut batches, range, &[], kind);
                 solve_listed(&mut scalar, &mut scalar_constraints, list, &[], h, use_bias);
             }
             assert_same(&lanes, &scalar, &format!("round {round}, pass {pass}"));
