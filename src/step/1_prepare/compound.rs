@@ -200,22 +200,15 @@ pub fn part_entry(
     (com, frame): (Vec3, Quat),
 ) -> ColliderEntry {
     let inv = frame.inverse();
+    let (at, turned) = (pos + rot * p.pos, (rot * p.rot).normalize());
     ColliderEntry {
-        entity: p.entity,
         owner,
-        key: p.key,
-        body,
-        asleep: false,
-        shape: p.shape.clone(),
         offset: inv * (p.pos - com),
         local_rot: (inv * p.rot).normalize(),
-        pos: pos + rot * p.pos,
-        rot: (rot * p.rot).normalize(),
         friction: p.friction,
         restitution: p.restitution,
         filter: p.filter,
-        aabb_min: Vec3::ZERO,
-        aabb_max: Vec3::ZERO,
+        ..ColliderEntry::new(p.entity, p.key, body, p.shape.clone(), at, turned)
     }
 }
 

@@ -41,21 +41,9 @@ fn scene(seed: u64) -> Vec<ColliderEntry> {
                 i
             };
             ColliderEntry {
-                entity: Entity::PLACEHOLDER,
-                owner: Entity::PLACEHOLDER,
-                key: i as u64,
-                body,
-                asleep: false,
-                shape,
-                offset: Vec3::ZERO,
-                local_rot: Quat::IDENTITY,
-                pos,
-                rot,
-                friction: 0.5,
-                restitution: 0.0,
-                filter: Default::default(),
                 aabb_min: lo - Vec3::splat(0.02),
                 aabb_max: hi + Vec3::splat(0.02),
+                ..ColliderEntry::new(Entity::PLACEHOLDER, i as u64, body, shape, pos, rot)
             }
         })
         .collect()

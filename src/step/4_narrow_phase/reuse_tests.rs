@@ -20,23 +20,7 @@ const CUTOFF: f32 = MARGIN + REACH;
 
 fn collider(entity: u32, shape: Shape, pos: Vec3, rot: Quat) -> ColliderEntry {
     let e = Entity::from_raw_u32(entity).unwrap();
-    ColliderEntry {
-        entity: e,
-        owner: e,
-        key: entity as u64,
-        body: entity,
-        asleep: false,
-        shape,
-        offset: Vec3::ZERO,
-        local_rot: Quat::IDENTITY,
-        pos,
-        rot,
-        friction: 0.5,
-        restitution: 0.0,
-        filter: default(),
-        aabb_min: Vec3::ZERO,
-        aabb_max: Vec3::ZERO,
-    }
+    ColliderEntry::new(e, entity as u64, entity, shape, pos, rot)
 }
 
 fn cuboid(entity: u32, half_extents: Vec3, pos: Vec3, rot: Quat) -> ColliderEntry {
