@@ -8,9 +8,10 @@
 //!   and a gentler 20 m/s and 1:100. Seeds 0–39 of both (`TUMBLE_PROPTEST_SEED`, 24
 //!   scenes each: 1,920 scenes) passed when this was written; at `cd75d80` 6 of those 80
 //!   runs fail on "inside", each a body of 1.5–2.4 m a few millimetres past the sag bound
-//!   below in a corner or on the floor (the stiffness rule's `max_sag` lets a contact
-//!   sag 0.2 % of the body's size, which this bound predates; open in the performance
-//!   issue's note). The CI seed passes. The energy allowance, stated: each body that starts
+//!   below in a corner or on the floor: a heavier body closing on it sinks its wall
+//!   contact by about v·√(M/m)/ω, which no stiffness rule asks for yet (README,
+//!   session 16; open in the performance issue's note). The CI seed passes. The energy
+//!   allowance, stated: each body that starts
 //!   overlapping another may be given at most ½·m·v_push² of kinetic energy (v_push =
 //!   `max_push_out`, the cap the share rule keeps every push below) and lifted by at
 //!   most the largest size in the scene, m·g·d_max.
