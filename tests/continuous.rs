@@ -8,11 +8,13 @@ use common::*;
 use tumble::prelude::*;
 
 /// A 1 kg cube 10 cm from a wall, hit toward it by a 1000 kg cube at `speed`, in zero
-/// gravity. Returns how far the light cube's face got past the wall, m (negative: it
-/// never reached it).
-fn deepest_into_wall(speed: f32, pacing: Pacing) -> f32 {
+/// gravity, at `substeps`. Returns how far the light cube's face got past the wall, m
+/// (negative: it never reached it), and the most it went deeper in one step, m (from
+/// the wall's face when it started outside).
+fn deepest_into_wall(speed: f32, pacing: Pacing, substeps: u32) -> (f32, f32) {
     let mut app = paced_app(pacing, false);
     app.insert_resource(Gravity(Vec3::ZERO));
+    app.world_mut().resource_mut::<SolverSettings>().substeps = substeps;
     // The wall: the plane x = 10, facing −x.
     let wall = Quat::from_rotation_arc(Vec3::Y, Vec3::NEG_X);
     app.world_mut().spawn((
@@ -36,66 +38,59 @@ fn deepest_into_wall(speed: f32, pacing: Pacing) -> f32 {
     app.world_mut()
         .entity_mut(heavy)
         .insert((Velocity::linear(Vec3::X * speed), Restitution(0.0)));
-    let mut deepest = f32::MIN;
+    let (mut deepest, mut gain, mut last) = (f32::MIN, f32::MIN, f32::MIN);
     for _ in 0..30 {
         step(&mut app, 1);
-        deepest = deepest.max(pos(&app, light).x + h - 10.0);
+        let depth = pos(&app, light).x + h - 10.0;
+        (deepest, gain) = (deepest.max(depth), gain.max(depth - last.max(0.0)));
+        last = depth;
     }
-    deepest
+    (deepest, gain)
+}
+
+/// The sweep's tolerance, then the soft contact's give under a 1000:1 squeeze.
+fn allowed_depth() -> f32 {
+    tumble::settings::CONTINUOUS_SLOP * SolverSettings::default().speculative_margin + 0.0086
 }
 
 #[test]
 fn a_light_box_hit_toward_a_wall_stops_at_it() {
-    let margin = SolverSettings::default().speculative_margin;
     for pacing in [Pacing::OneStep, Pacing::Render(240.0), Pacing::Render(30.0)] {
         for speed in [20.0, 50.0, 100.0] {
-            let d = deepest_into_wall(speed, pacing);
+            let (d, _) = deepest_into_wall(speed, pacing, SolverSettings::default().substeps);
             eprintln!("{pacing:?} {speed} m/s: {d} m");
-            // The sweep's tolerance, then the soft contact's give under a 1000:1 squeeze.
             assert!(
-                d <= tumble::settings::CONTINUOUS_SLOP * margin + 0.0086,
+                d <= allowed_depth(),
                 "{pacing:?}, {speed} m/s: {d} m into the wall"
             );
         }
     }
 }
 
+/// A regression. At 16 substeps the light box, struck in one step, flew at the wall at
+/// 20 m/s from the start of the next, its wall contact already found; the heavy box
+/// drove it through that contact (Gauss–Seidel hands the light box the heavy one's
+/// speed again at every pass) along its own free path, which the sweep took for a path
+/// no contact had changed: 0.22 m into the wall in one step. At 4 substeps the contact
+/// held it back enough to leave that path, and the sweep caught it. Bodies that a
+/// heavier one touches are now swept whenever they moved more than the margin, so in
+/// any step the light box goes at most the margin deeper (unswept, it moved less than
+/// that; swept, at most the slop). Where the squeeze leaves it after is the soft
+/// contact's: 11 mm at 1, 2 and 4 substeps, 13–23 mm at 8 and 33–42 mm at 16 (a
+/// finding, not asserted here: see the README's robustness notes).
 #[test]
-fn a_small_body_stops_within_a_tenth_of_its_size() {
-    // A 2 cm cube 5 cm from the wall (beyond the speculative margin: no wall contact at
-    // the start of the step), hit toward it at 20 and 50 m/s by a 100 kg cube: at the end
-    // of the step it reaches the wall, it is at most a tenth of its size in
-    // (SLOP_OF_THICKNESS; the fixed 5 mm would be a quarter of it). Later steps' squeeze
-    // is the soft contact's, not the sweep's.
-    let h = 0.01;
-    for speed in [20.0, 50.0] {
-        let mut app = app_without_gravity();
-        let wall = Quat::from_rotation_arc(Vec3::Y, Vec3::NEG_X);
-        app.world_mut().spawn((
-            Collider::plane(),
-            Transform::from_xyz(10.0, 0.0, 0.0).with_rotation(wall),
-        ));
-        let light = cuboid(
-            &mut app,
-            Vec3::splat(h),
-            1.0,
-            Vec3::new(10.0 - h - 0.05, 0.0, 0.0),
-        );
-        let heavy = cuboid(&mut app, Vec3::splat(h), 100.0, Vec3::new(9.0, 0.0, 0.0));
-        app.world_mut()
-            .entity_mut(heavy)
-            .insert(Velocity::linear(Vec3::X * speed));
-        let first = (0..60)
-            .map(|_| {
-                step(&mut app, 1);
-                pos(&app, light).x + h - 10.0
-            })
-            .find(|&d| d > -1e-4)
-            .expect("reaches the wall");
-        let bound = tumble::settings::SLOP_OF_THICKNESS * 2.0 * h;
-        assert!(
-            first <= bound + 1e-5,
-            "{speed} m/s: {first} m into the wall (bound {bound})"
-        );
+fn a_light_box_hit_toward_a_wall_stops_at_it_at_any_substeps() {
+    let margin = SolverSettings::default().speculative_margin;
+    for substeps in [1, 2, 8, 16] {
+        for pacing in [Pacing::OneStep, Pacing::Render(30.0)] {
+            for speed in [20.0, 50.0] {
+                let (d, gain) = deepest_into_wall(speed, pacing, substeps);
+                eprintln!("{substeps} substeps, {pacing:?} {speed} m/s: {d} m, {gain} m a step");
+                assert!(
+                    gain <= margin,
+                    "{substeps} substeps, {pacing:?}, {speed} m/s: {gain} m deeper in a step"
+                );
+            }
+        }
     }
 }

@@ -9,8 +9,14 @@
 //! free path by more than the speculative margin covers: the body's pose is moved back
 //! along its path, by bisection, to where it is no deeper into any fixed collider than it
 //! started (plus [`CONTINUOUS_SLOP`] of the margin), and its velocity into that collider
-//! is removed. Everything else (bodies that kept to their free path, sleepers, static
-//! scenes) costs one subtraction per contact body.
+//! is removed. A body that a heavier one touches is swept too, when it moved more than
+//! the margin: a light box already flying at a wall, its contact with the wall found,
+//! and a 1000 times heavier box behind it, is driven through that contact — Gauss–Seidel
+//! passes, each of which hands the light box the heavy one's speed again, converge in
+//! about M/m of them — and it kept to its free path while doing so (at 16 substeps it
+//! ended 0.22 m inside the wall). Everything else (bodies that kept to their free path
+//! and have no heavier neighbour, sleepers, static scenes) costs one subtraction per
+//! contact body.
 
 use bevy::prelude::*;
 
@@ -26,6 +32,7 @@ pub fn sweep_against_fixed(
     mut world: ResMut<PhysicsWorld>,
     settings: Res<SolverSettings>,
     mut found: Local<Vec<u32>>,
+    mut pushed: Local<Vec<bool>>,
 ) {
     let world = &mut *world;
     // Only a contact can move a body off its free path.
@@ -33,6 +40,7 @@ pub fn sweep_against_fixed(
         return;
     }
     let dt = world.dt;
+    mark_pushed(world, &mut pushed);
     for ci in 0..world.colliders.len() {
         let c = &world.colliders[ci];
         let fixed_or_asleep = c.body == STATIC || c.asleep;
@@ -45,7 +53,8 @@ pub fn sweep_against_fixed(
         // and the tolerance, which for small bodies is a tenth of the thinnest side.
         let thickness = c.shape.thickness();
         let margin = settings.margin_for(thickness);
-        if !b.in_contact || (s.dp - b.v0 * dt).length() <= margin {
+        let off_path = (s.dp - b.v0 * dt).length() > margin;
+        if !b.in_contact || !(off_path || pushed[i] && s.dp.length() > margin) {
             continue;
         }
         let (dp, dq) = (s.dp, s.dq);
@@ -102,6 +111,26 @@ pub fn sweep_against_fixed(
         s.dq = Quat::IDENTITY.slerp(dq, t).normalize();
         // `n` points from the body into the fixed collider: stop moving into it.
         s.v -= s.v.dot(n).max(0.0) * n;
+    }
+}
+
+/// Marks, per body, whether a heavier dynamic body has a manifold with it.
+fn mark_pushed(world: &PhysicsWorld, pushed: &mut Vec<bool>) {
+    pushed.clear();
+    pushed.resize(world.bodies.len(), false);
+    let inv_mass = |c: u32| {
+        let body = world.colliders[c as usize].body;
+        let dynamic = body != STATIC && world.bodies[body as usize].is_dynamic();
+        dynamic.then(|| (body, world.solver_bodies[body as usize].inv_mass))
+    };
+    for m in &world.manifolds {
+        if let (Some((a, ima)), Some((b, imb))) = (inv_mass(m.a), inv_mass(m.b)) {
+            if ima > imb {
+                pushed[a as usize] = true;
+            } else if imb > ima {
+                pushed[b as usize] = true;
+            }
+        }
     }
 }
 
