@@ -73,11 +73,13 @@ fn a_light_box_hit_toward_a_wall_stops_at_it() {
 /// speed again at every pass) along its own free path, which the sweep took for a path
 /// no contact had changed: 0.22 m into the wall in one step. At 4 substeps the contact
 /// held it back enough to leave that path, and the sweep caught it. Bodies that a
-/// heavier one touches are now swept whenever they moved more than the margin, so in
-/// any step the light box goes at most the margin deeper (unswept, it moved less than
-/// that; swept, at most the slop). Where the squeeze leaves it after is the soft
-/// contact's: 11 mm at 1, 2 and 4 substeps, 13–23 mm at 8 and 33–42 mm at 16 (a
-/// finding, not asserted here: see the README's robustness notes).
+/// heavier one touches are now swept whenever they moved more than the slop (a quarter
+/// of the margin), so in any step the light box goes about the slop deeper at most
+/// (measured 5.7 mm at the face's centre, which a slight tilt puts past the slop that
+/// bounds the deepest corner); asserted: less than the margin, which the 0.22 m broke.
+/// Where the squeeze leaves it after is the soft contact's: 11 mm at 1, 2 and 4
+/// substeps, 13–22 mm at 8 and 24–28 mm at 16 (a finding, not asserted here: see the
+/// README's session 17 notes).
 #[test]
 fn a_light_box_hit_toward_a_wall_stops_at_it_at_any_substeps() {
     let margin = SolverSettings::default().speculative_margin;
