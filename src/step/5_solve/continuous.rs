@@ -15,9 +15,9 @@
 //! passes, each of which hands the light box the heavy one's speed again, converge in
 //! about M/m of them — and it kept to its free path while doing so (at 16 substeps it
 //! ended 0.22 m inside the wall; swept past the margin only, it still crept 12–14 mm a
-//! step). Everything else (bodies that kept to their free path
-//! and have no heavier neighbour, sleepers, static scenes) costs one subtraction per
-//! contact body.
+//! step). Everything else (bodies that kept to their free path and have no heavier
+//! neighbour, sleepers, static scenes) costs one subtraction per contact body, and one
+//! pass over the manifolds marks the pushed bodies.
 
 use bevy::prelude::*;
 
