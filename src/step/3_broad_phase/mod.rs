@@ -9,12 +9,16 @@
 
 #[cfg(test)]
 mod brute_force;
+mod pair_order;
 #[cfg(test)]
 mod parity_tests;
 #[cfg(any(test, feature = "bench-internals"))]
 mod sweep_and_prune;
 
 use bevy::prelude::*;
+
+use pair_order::PairOrderScratch;
+pub use pair_order::canonical_order;
 
 use crate::limits::MAX_PAIRS_PER_STEP;
 use crate::settings::SolverSettings;
@@ -35,6 +39,7 @@ pub struct BroadPhaseScratch {
     found: Vec<u32>,
     /// The pair cap was hit last step (warn once per episode).
     capped: bool,
+    order: PairOrderScratch,
 }
 
 /// Updates the awake colliders' swept, fattened bounds and finds the overlapping pairs:
@@ -90,7 +95,7 @@ pub fn find_pairs(
             world.pairs.push((ci as u32, *slot));
         }
     }
-    canonical_order(&world.colliders, &mut world.pairs);
+    canonical_order(&world.colliders, &mut world.pairs, &mut scratch.order);
     if full && !scratch.capped {
         warn!(
             "tumble: more than {cap} overlapping pairs this step (a pile spawned into one \
@@ -98,24 +103,6 @@ pub fn find_pairs(
         );
     }
     scratch.capped = full;
-}
-
-/// Puts the pairs in the order of their colliders' spawn order keys (pairs with a fixed
-/// collider before the others), each pair with the lower key first, so the narrow phase and the solver visit the same contacts in the
-/// same order whatever the ECS's table order, the entity ids and the fixed set's
-/// internal order are (they change as unrelated bodies come and go).
-pub fn canonical_order(colliders: &[ColliderEntry], pairs: &mut [(u32, u32)]) {
-    let key = |i: u32| colliders[i as usize].key;
-    for p in pairs.iter_mut() {
-        if key(p.0) > key(p.1) {
-            *p = (p.1, p.0);
-        }
-    }
-    // Pairs with something fixed (static or asleep) go first, whatever was spawned
-    // first: each Gauss–Seidel pass then works up from the ground, which stacks need
-    // (the solver runs them once more at the end of the pass, see `solve_contacts`).
-    let fixed = |i: u32| colliders[i as usize].body == STATIC;
-    pairs.sort_unstable_by_key(|&(a, b)| (!(fixed(a) || fixed(b)), key(a), key(b)));
 }
 
 /// Bounds over the start and free-end poses, fattened by `margin`.
