@@ -1,6 +1,7 @@
 //! Coulomb friction: boxes on a ramp stick or slide by μ against tan θ, a sliding box stops
 //! at v²/(2μg) in every direction (a round friction cone), and a sliding ball turns its
-//! slide into rolling at 5/7 of its speed.
+//! slide into rolling at 5/7 of its speed; a box spun flat on the floor stops at the rate
+//! its corners' friction gives.
 
 mod common;
 use bevy::prelude::*;
@@ -112,4 +113,47 @@ fn sliding_ball_rolls_at_five_sevenths_of_its_speed() {
     }
     let speed = vel(&app, b).linear.length();
     assert!((speed - 5.0).abs() < 0.05, "speed after 1 s: {speed}");
+}
+
+#[test]
+fn spinning_box_on_the_floor_stops_at_the_rate_its_corners_friction_gives() {
+    // A cube of half extent h rests on its four corners, each carrying m·g/4 at h·√2
+    // from the centre: friction μ·m·g·h·√2 about the vertical against the inertia
+    // m·(2h)²/6 = (2/3)·m·h², so the spin falls at α = 1.5·√2·μ·g/h and stops at ω0/α.
+    let (omega0, mu, h) = (10.0f32, 0.5f32, 0.5f32);
+    let alpha = 1.5 * 2f32.sqrt() * mu * G / h;
+    let mut app = app();
+    let g = ground(&mut app, Vec3::ZERO, Quat::IDENTITY);
+    app.world_mut().entity_mut(g).insert(Friction(mu));
+    let start = Vec3::Y * h;
+    let e = cuboid(&mut app, Vec3::splat(h), 1.0, start);
+    step(&mut app, 10);
+    let spin = |app: &App| vel(app, e).angular.y;
+    assert!(spin(&app).abs() < 1e-3, "at rest: {}", spin(&app));
+    app.world_mut().entity_mut(e).insert((
+        Friction(mu),
+        Velocity {
+            linear: Vec3::ZERO,
+            angular: Vec3::Y * omega0,
+        },
+    ));
+    let stop = omega0 / alpha;
+    // Over the first 60 % of the stop time the spin falls at α (the first step runs
+    // with last step's impulses, so measure from the second).
+    step(&mut app, 1);
+    let (w1, t1) = (spin(&app), H);
+    let steps = (0.6 * stop / H) as usize;
+    step(&mut app, steps);
+    let (w2, t2) = (spin(&app), H * (steps + 1) as f32);
+    let measured = (w1 - w2) / (t2 - t1);
+    // The four loads are equal by symmetry, so only rounding and the soft contacts'
+    // settling separate the rate from α (measured: 1e-5 of it).
+    assert_near(measured, alpha, 1e-3 * alpha, "spin-down rate, rad/s²");
+    // It stops, and stays stopped (friction never turns it back), where it was.
+    step(&mut app, (0.6 * stop / H) as usize);
+    assert!(spin(&app).abs() < 1e-2, "still spinning at {}", spin(&app));
+    let drift = (pos(&app, e) - start) * Vec3::new(1.0, 0.0, 1.0);
+    assert!(drift.length() < 1e-3, "walked {drift} while spinning");
+    let tilt = vel(&app, e).angular.xz().length();
+    assert!(tilt < 1e-2, "rocking at {tilt} rad/s");
 }

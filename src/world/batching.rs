@@ -16,7 +16,7 @@ use std::ops::Range;
 
 use bevy::prelude::*;
 
-use super::{ContactBatch, ContactConstraint, PointLanes, STATIC, SolverBody};
+use super::{ContactBatch, ContactConstraint, FrictionLanes, PointLanes, STATIC, SolverBody};
 
 /// Contacts solved side by side in one batch (SSE2's four f32 lanes).
 pub(crate) const LANES: usize = 4;
@@ -43,6 +43,8 @@ pub(crate) struct ContactBatches {
     pub batches: Vec<ContactBatch>,
     /// The batches' points, lane by lane ([`ContactBatch::range`]).
     pub points: Vec<PointLanes>,
+    /// The batches' friction impulses, one a batch.
+    pub friction: Vec<FrictionLanes>,
     /// The pass: batches and scalar contacts, the contacts with fixed colliders first.
     pub steps: Vec<SolveStep>,
     /// How many steps, at the front, are those of the contacts with fixed colliders
@@ -100,6 +102,7 @@ impl ContactBatches {
     ) {
         self.batches.clear();
         self.points.clear();
+        self.friction.clear();
         self.steps.clear();
         self.stamp.clear();
         self.stamp.resize(bodies.len(), 0);
@@ -170,7 +173,13 @@ impl ContactBatches {
                 lanes[n] = c;
                 n += 1;
                 if n == LANES {
-                    let batch = ContactBatch::new(constraints, bodies, lanes, &mut self.points);
+                    let batch = ContactBatch::new(
+                        constraints,
+                        bodies,
+                        lanes,
+                        &mut self.points,
+                        &mut self.friction,
+                    );
                     self.batches.push(batch);
                     (lanes, n) = ([NO_CONTACT; LANES], 0);
                 }
@@ -178,7 +187,13 @@ impl ContactBatches {
             // A batch of few lanes costs about what a full one does: its contacts go to
             // the scalar pass (the same bits; a chain or a tower has one contact a level).
             let lone = if n >= MIN_LANES {
-                let batch = ContactBatch::new(constraints, bodies, lanes, &mut self.points);
+                let batch = ContactBatch::new(
+                    constraints,
+                    bodies,
+                    lanes,
+                    &mut self.points,
+                    &mut self.friction,
+                );
                 self.batches.push(batch);
                 0
             } else {
@@ -205,8 +220,8 @@ impl ContactBatches {
 
     /// The batches' accumulated impulses back into the constraints.
     pub(crate) fn write_back(&self, constraints: &mut [ContactConstraint]) {
-        for b in &self.batches {
-            b.write_back(&self.points, constraints);
+        for (b, f) in self.batches.iter().zip(&self.friction) {
+            b.write_back(&self.points, f, constraints);
         }
     }
 

@@ -1,5 +1,7 @@
-//! Contact constraints: what the solver builds from a manifold, one soft normal row and a
-//! two-row friction disc per point, with the angular parts prepared once per step.
+//! Contact constraints: what the solver builds from a manifold, one soft normal row per
+//! point and one friction anchor per manifold (a two-row friction disc at the points'
+//! centre and a twist row about the normal), with the angular parts prepared once per
+//! step.
 
 use bevy::prelude::*;
 
@@ -26,21 +28,48 @@ pub(crate) struct ConstraintPoint {
     /// Separation at the start of the step minus n·(rb − ra), so that the current
     /// separation is this plus n·(cb − ca) for the moved anchor points ca, cb.
     pub adjusted_separation: f32,
-    /// The angular parts of the normal row and the two tangent rows.
+    /// The angular parts of the normal row.
     pub normal_row: AngularRow,
-    pub tangent_rows: [AngularRow; 2],
+    /// kg.
     pub normal_mass: f32,
-    /// One mass for both tangent rows; see `isotropic_tangent_mass`.
-    pub tangent_mass: f32,
+    /// N·s.
     pub normal_impulse: f32,
-    /// Friction impulse along (tangent1, tangent2).
-    pub tangent_impulse: Vec2,
+    /// Distance from the friction anchor (the points' centre) in the contact plane, m:
+    /// this point's lever arm against twist.
+    pub twist_arm: f32,
     /// Largest normal impulse this step; restitution only acts on points that pushed.
     pub max_normal_impulse: f32,
     /// Normal relative velocity at the start of the step, m/s, and from when the point
     /// first pushes, its speed then: the approach speed restitution reverses (see
     /// `ContactConstraint::approach_gain`).
     pub relative_velocity: f32,
+}
+
+/// A manifold's friction, at one anchor: the points' centre, where a disc of two tangent
+/// rows holds the slip, plus a twist row about the normal that holds the turn in the
+/// contact plane. Three rows a manifold instead of two a point (eight for a box face):
+/// the same sliding friction, μ·Σλn, and the twist limited to μ·Σ λn·arm, what the
+/// points' own friction would give against a pure turn about the centre. Solved as one
+/// anchor, it also has no order among the points: a corner solved first no longer twists
+/// the box before the next corner is.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct FrictionAnchor {
+    /// The anchor from each body's centre, world frame, start of step, m.
+    pub ra: Vec3,
+    pub rb: Vec3,
+    /// The angular parts of the two tangent rows.
+    pub tangent_rows: [AngularRow; 2],
+    /// One mass for both tangent rows, kg; see `isotropic_tangent_mass`.
+    pub tangent_mass: f32,
+    /// Friction impulse along (tangent1, tangent2), N·s.
+    pub tangent_impulse: Vec2,
+    /// Ia⁻¹ n, Ib⁻¹ n: the twist row's images under the inverse inertias, 1/(kg·m²).
+    pub twist_ia: Vec3,
+    pub twist_ib: Vec3,
+    /// kg·m²; 0 for a single point (no twist row).
+    pub twist_mass: f32,
+    /// Twist impulse about the normal, on B, N·m·s.
+    pub twist_impulse: f32,
 }
 
 /// The angular parts of one velocity row along a direction d at a contact point:
@@ -133,6 +162,7 @@ pub(crate) struct ContactConstraint {
     pub max_push: f32,
     pub points: [ConstraintPoint; MAX_POINTS],
     pub len: usize,
+    pub anchor: FrictionAnchor,
 }
 
 /// The knobs of the solver's constraint preparation: stiffness, substep, and whether friction runs.

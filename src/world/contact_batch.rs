@@ -23,18 +23,29 @@ pub(crate) struct PointLanes {
     pub rb: V3,
     /// See [`ConstraintPoint::adjusted_separation`], m.
     pub adjusted_separation: F4,
-    /// Effective masses, kg.
+    /// Effective mass, kg.
     pub normal_mass: F4,
-    pub tangent_mass: F4,
-    /// Accumulated impulses this substep, N·s.
+    /// Accumulated impulse this substep, N·s.
     pub normal_impulse: F4,
-    pub tangent_impulse: [F4; 2],
+    /// See [`ConstraintPoint::twist_arm`], m.
+    pub twist_arm: F4,
     pub max_normal_impulse: F4,
     /// See [`ConstraintPoint::relative_velocity`], m/s.
     pub relative_velocity: F4,
     /// The separation now (positions move only between substeps), as the first pass
     /// after they moved measured it, m.
     pub separation: F4,
+}
+
+/// What the passes change of a batch's friction anchors (see
+/// [`FrictionAnchor`](super::FrictionAnchor)), lane by lane: kept beside the batches
+/// (`ContactBatches::friction`, one a batch), which the passes only read.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct FrictionLanes {
+    /// Accumulated friction impulse this substep along the two tangents, N·s.
+    pub tangent_impulse: [F4; 2],
+    /// Accumulated twist impulse about the normal, N·m·s.
+    pub twist_impulse: F4,
 }
 
 /// Four contacts that share no body the solver moves, lane by lane.
@@ -66,6 +77,12 @@ pub(crate) struct ContactBatch {
     pub max_push: F4,
     /// All-ones lanes whose contact has more than k points, per k.
     pub has: [F4; MAX_POINTS],
+    /// The friction anchors (see [`FrictionAnchor`](super::FrictionAnchor)), m.
+    pub anchor_ra: V3,
+    pub anchor_rb: V3,
+    /// kg, kg·m² (0: no twist row).
+    pub tangent_mass: F4,
+    pub twist_mass: F4,
     /// Where the batch's points start in the batches' point lanes, and how many it has
     /// (the most of any lane).
     pub first: u32,
@@ -85,9 +102,8 @@ impl PointLanes {
         rb: V3::ZERO,
         adjusted_separation: F4::ZERO,
         normal_mass: F4::ZERO,
-        tangent_mass: F4::ZERO,
         normal_impulse: F4::ZERO,
-        tangent_impulse: [F4::ZERO; 2],
+        twist_arm: F4::ZERO,
         max_normal_impulse: F4::ZERO,
         relative_velocity: F4::ZERO,
         separation: F4::ZERO,
@@ -98,10 +114,8 @@ impl PointLanes {
         self.rb.set(l, p.rb);
         set(&mut self.adjusted_separation, l, p.adjusted_separation);
         set(&mut self.normal_mass, l, p.normal_mass);
-        set(&mut self.tangent_mass, l, p.tangent_mass);
         set(&mut self.normal_impulse, l, p.normal_impulse);
-        set(&mut self.tangent_impulse[0], l, p.tangent_impulse.x);
-        set(&mut self.tangent_impulse[1], l, p.tangent_impulse.y);
+        set(&mut self.twist_arm, l, p.twist_arm);
         set(&mut self.max_normal_impulse, l, p.max_normal_impulse);
         set(&mut self.relative_velocity, l, p.relative_velocity);
     }
@@ -109,23 +123,22 @@ impl PointLanes {
     /// Lane `l`'s accumulated impulses into its point.
     fn write_back(&self, l: usize, p: &mut ConstraintPoint) {
         p.normal_impulse = self.normal_impulse.as_array_ref()[l];
-        p.tangent_impulse = Vec2::new(
-            self.tangent_impulse[0].as_array_ref()[l],
-            self.tangent_impulse[1].as_array_ref()[l],
-        );
         p.max_normal_impulse = self.max_normal_impulse.as_array_ref()[l];
         p.relative_velocity = self.relative_velocity.as_array_ref()[l];
     }
 }
 
 impl ContactBatch {
-    /// The batch of the listed constraints, its points appended to `points`.
+    /// The batch of the listed constraints, its points appended to `points` and its
+    /// friction impulses to `friction`.
     pub(crate) fn new(
         constraints: &[ContactConstraint],
         bodies: &[SolverBody],
         contact: [u32; LANES],
         points: &mut Vec<PointLanes>,
+        friction: &mut Vec<FrictionLanes>,
     ) -> Self {
+        let mut rubbing = FrictionLanes::default();
         let first = points.len();
         let len = |ci: u32| (ci != NO_CONTACT).then(|| constraints[ci as usize].len);
         let most = contact.iter().filter_map(|&ci| len(ci)).max().unwrap_or(0);
@@ -147,6 +160,10 @@ impl ContactBatch {
             impulse_scale: F4::ZERO,
             max_push: F4::ZERO,
             has: [F4::ZERO; MAX_POINTS],
+            anchor_ra: V3::ZERO,
+            anchor_rb: V3::ZERO,
+            tangent_mass: F4::ZERO,
+            twist_mass: F4::ZERO,
             first: first as u32,
             points: most as u32,
         };
@@ -179,11 +196,20 @@ impl ContactBatch {
             set(&mut b.mass_scale, l, c.softness.mass_scale);
             set(&mut b.impulse_scale, l, c.softness.impulse_scale);
             set(&mut b.max_push, l, c.max_push);
+            let f = &c.anchor;
+            b.anchor_ra.set(l, f.ra);
+            b.anchor_rb.set(l, f.rb);
+            set(&mut b.tangent_mass, l, f.tangent_mass);
+            set(&mut b.twist_mass, l, f.twist_mass);
+            set(&mut rubbing.tangent_impulse[0], l, f.tangent_impulse.x);
+            set(&mut rubbing.tangent_impulse[1], l, f.tangent_impulse.y);
+            set(&mut rubbing.twist_impulse, l, f.twist_impulse);
             for k in 0..c.len {
                 set(&mut b.has[k], l, ALL);
                 point[k].set(l, &c.points[k]);
             }
         }
+        friction.push(rubbing);
         b
     }
 
@@ -193,12 +219,22 @@ impl ContactBatch {
         self.first as usize..(self.first + self.points) as usize
     }
 
-    /// The lanes' accumulated impulses back into their constraints.
-    pub(crate) fn write_back(&self, points: &[PointLanes], constraints: &mut [ContactConstraint]) {
+    /// The lanes' accumulated impulses (`friction`: this batch's) back into their
+    /// constraints.
+    pub(crate) fn write_back(
+        &self,
+        points: &[PointLanes],
+        friction: &FrictionLanes,
+        constraints: &mut [ContactConstraint],
+    ) {
         let point = &points[self.range()];
         for (l, &ci) in self.contact.iter().enumerate() {
             if ci != NO_CONTACT {
                 let c = &mut constraints[ci as usize];
+                let lane = |v: &F4| v.as_array_ref()[l];
+                let t = &friction.tangent_impulse;
+                c.anchor.tangent_impulse = Vec2::new(lane(&t[0]), lane(&t[1]));
+                c.anchor.twist_impulse = lane(&friction.twist_impulse);
                 for (k, p) in c.points[..c.len].iter_mut().enumerate() {
                     point[k].write_back(l, p);
                 }

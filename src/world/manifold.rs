@@ -18,8 +18,13 @@ pub(crate) struct ContactPoint {
     pub id: u32,
     /// Accumulated normal impulse (N·s): warm start in, solved value out.
     pub normal_impulse: f32,
-    /// Accumulated friction impulse in the world frame.
+    /// This point's share of the manifold's accumulated friction impulse (its share of
+    /// the normal impulse), world frame, N·s: the manifold's friction acts at one anchor
+    /// (see the solver's `FrictionAnchor`), and the shares of the points that persist
+    /// warm-start the next step's.
     pub tangent_impulse: Vec3,
+    /// Its share of the manifold's twist impulse about the normal, N·m·s.
+    pub twist_impulse: f32,
     /// Normal impulse over the whole last step, N·s (every substep's, restitution's),
     /// for colliders with collision events; 0 otherwise.
     pub total_normal_impulse: f32,

@@ -20,10 +20,10 @@ pub(crate) use batching::{
 };
 pub(crate) use body_view::{BodyView, Shared, SharedBodies};
 pub(crate) use constraint::{
-    Anchoring, AngularRow, ConstraintPoint, ContactConstraint, ContactParams, NO_ROLL, RollingArms,
-    body, row_velocity, store,
+    Anchoring, AngularRow, ConstraintPoint, ContactConstraint, ContactParams, FrictionAnchor,
+    NO_ROLL, RollingArms, body, row_velocity, store,
 };
-pub(crate) use contact_batch::{ContactBatch, PointLanes};
+pub(crate) use contact_batch::{ContactBatch, FrictionLanes, PointLanes};
 pub(crate) use fixed_set::FixedSet;
 pub(crate) use joint::{JointConstraint, JointRows, ordered_pair};
 pub(crate) use manifold::{Anchors, MAX_POINTS, Manifold};

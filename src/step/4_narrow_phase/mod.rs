@@ -233,6 +233,7 @@ fn warm_start_from(m: &mut Manifold, cached: &Manifold, reach: f32) {
         if let Some(c) = same_id.or_else(nearest) {
             p.normal_impulse = c.normal_impulse;
             p.tangent_impulse = c.tangent_impulse;
+            p.twist_impulse = c.twist_impulse;
         }
     }
 }

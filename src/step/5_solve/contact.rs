@@ -1,5 +1,5 @@
-//! Contact constraints, one per manifold: a soft non-penetration row per point, then a
-//! two-row friction disc per point. Plain functions over the solver-body and constraint
+//! Contact constraints, one per manifold: a soft non-penetration row per point, then
+//! friction at one anchor (a two-row disc and a twist row, see [`FrictionAnchor`]). Plain functions over the solver-body and constraint
 //! slices; each constraint loads its two bodies once and stores them once.
 
 use bevy::prelude::*;
@@ -8,8 +8,8 @@ use super::stiffness::{contact_softness, pair_size};
 use crate::collider::Shape;
 use crate::world::{
     Anchoring, AngularRow, BodyState, ColliderEntry, ConstraintPoint, ContactConstraint,
-    ContactParams, MAX_POINTS, Manifold, NO_ROLL, RollingArms, STATIC, SolverBody, body,
-    is_isotropic, row_velocity,
+    ContactParams, FrictionAnchor, MAX_POINTS, Manifold, NO_ROLL, RollingArms, STATIC, SolverBody,
+    body, is_isotropic, row_velocity,
 };
 
 /// A turning sphere's centre from its body's centre of mass (zero when they coincide,
@@ -61,6 +61,46 @@ fn mass_of(k: f32) -> f32 {
 fn isotropic_tangent_mass(linear: f32, rows: &[AngularRow; 2], spin: [bool; 2]) -> f32 {
     let k = |row: &AngularRow| linear + row.inv_mass(spin);
     mass_of(0.5 * (k(&rows[0]) + k(&rows[1])))
+}
+
+/// The friction rows of anchors `ra`, `rb` (the points' centre from each body's centre)
+/// and the twist row about `normal` (a manifold of one point has none: `points` 1), with
+/// no impulse yet.
+pub(super) fn friction_anchor(
+    a: &SolverBody,
+    b: &SolverBody,
+    (ra, rb): (Vec3, Vec3),
+    c: &ContactConstraint,
+    points: usize,
+) -> FrictionAnchor {
+    let tangent_rows = [
+        AngularRow::new(a, b, ra, rb, c.tangent1),
+        AngularRow::new(a, b, ra, rb, c.tangent2),
+    ];
+    let (twist_ia, twist_ib) = (a.inv_inertia * c.normal, b.inv_inertia * c.normal);
+    let spin = c.spin;
+    let k = |on: bool, i: Vec3| if on { c.normal.dot(i) } else { 0.0 };
+    FrictionAnchor {
+        ra,
+        rb,
+        tangent_rows,
+        tangent_mass: isotropic_tangent_mass(a.inv_mass + b.inv_mass, &tangent_rows, spin),
+        tangent_impulse: Vec2::ZERO,
+        twist_ia,
+        twist_ib,
+        twist_mass: if points > 1 {
+            mass_of(k(spin[0], twist_ia) + k(spin[1], twist_ib))
+        } else {
+            0.0
+        },
+        twist_impulse: 0.0,
+    }
+}
+
+/// The distance of `d` from the normal's line through the anchor: a point's lever arm
+/// against twist, m.
+fn plane_distance(d: Vec3, normal: Vec3) -> f32 {
+    (d - normal * normal.dot(d)).length()
 }
 
 /// Overlap at spawn: a body buried in k others is pushed out by k contacts at once. If
@@ -210,31 +250,32 @@ pub fn prepare_constraints(
             },
             points: [ConstraintPoint::default(); MAX_POINTS],
             len: m.len,
+            anchor: FrictionAnchor::default(),
         };
         let linear = sa.inv_mass + sb.inv_mass;
+        let mid = m.points().iter().map(|p| p.point).sum::<Vec3>() / m.len.max(1) as f32;
         for (cp, p) in c.points.iter_mut().zip(m.points()) {
             let (ra, rb) = (p.point - centre(ca), p.point - centre(cb));
             let normal_row = AngularRow::new(&sa, &sb, ra, rb, m.normal);
-            // Two calls, not `[t1, t2].map(..)`: the array map's closure was not inlined
-            // and made this loop 87 % slower (perf, 385-cube pyramid).
-            let tangent_rows = [
-                AngularRow::new(&sa, &sb, ra, rb, t1),
-                AngularRow::new(&sa, &sb, ra, rb, t2),
-            ];
             *cp = ConstraintPoint {
                 ra,
                 rb,
                 adjusted_separation: p.separation - m.normal.dot(rb - ra),
                 normal_row,
-                tangent_rows,
                 normal_mass: mass_of(linear + normal_row.inv_mass(spin)),
-                tangent_mass: isotropic_tangent_mass(linear, &tangent_rows, spin),
                 normal_impulse: p.normal_impulse,
-                tangent_impulse: Vec2::new(p.tangent_impulse.dot(t1), p.tangent_impulse.dot(t2)),
+                twist_arm: plane_distance(p.point - mid, m.normal),
                 max_normal_impulse: 0.0,
                 relative_velocity: 0.0,
             };
             cp.relative_velocity = row_velocity(&sa, &sb, m.normal, &normal_row, spin);
+        }
+        c.anchor = friction_anchor(&sa, &sb, (mid - centre(ca), mid - centre(cb)), &c, m.len);
+        // Last step's friction, from the shares of the points that persist.
+        let tangent = m.points().iter().map(|p| p.tangent_impulse).sum::<Vec3>();
+        c.anchor.tangent_impulse = Vec2::new(tangent.dot(t1), tangent.dot(t2));
+        if m.len > 1 {
+            c.anchor.twist_impulse = m.points().iter().map(|p| p.twist_impulse).sum();
         }
         out.push(c);
     }
@@ -260,6 +301,7 @@ pub fn refresh_rows(
         let linear = a.inv_mass + b.inv_mass;
         let anchoring = c.anchoring;
         let rolls = anchoring.rolls() && arms[anchoring.roll as usize].arm != [Vec3::ZERO; 2];
+        let mut mid = [Vec3::ZERO; 2];
         for p in c.points[..c.len].iter_mut() {
             if rolls {
                 // A sphere rolling about an off-centre centre of mass: its contact point
@@ -268,19 +310,22 @@ pub fn refresh_rows(
                 // a weeble's swing grew 20 % in three periods).
                 let (ra, rb) = anchoring.anchors(p, &a, &b, arms);
                 p.normal_row = AngularRow::new(&a, &b, ra, rb, c.normal);
-                p.tangent_rows = [
-                    AngularRow::new(&a, &b, ra, rb, c.tangent1),
-                    AngularRow::new(&a, &b, ra, rb, c.tangent2),
-                ];
+                mid[0] += ra;
+                mid[1] += rb;
             }
-            let rows = std::iter::once(&mut p.normal_row).chain(p.tangent_rows.iter_mut());
-            for row in rows {
-                row.ia = a.inv_inertia * row.ra;
-                row.ib = b.inv_inertia * row.rb;
-            }
+            p.normal_row.ia = a.inv_inertia * p.normal_row.ra;
+            p.normal_row.ib = b.inv_inertia * p.normal_row.rb;
             p.normal_mass = mass_of(linear + p.normal_row.inv_mass(c.spin));
-            p.tangent_mass = isotropic_tangent_mass(linear, &p.tangent_rows, c.spin);
         }
+        let anchor = if rolls {
+            let n = c.len.max(1) as f32;
+            (mid[0] / n, mid[1] / n)
+        } else {
+            (c.anchor.ra, c.anchor.rb)
+        };
+        let impulses = (c.anchor.tangent_impulse, c.anchor.twist_impulse);
+        c.anchor = friction_anchor(&a, &b, anchor, c, c.len);
+        (c.anchor.tangent_impulse, c.anchor.twist_impulse) = impulses;
     }
 }
 
@@ -291,10 +336,29 @@ pub fn refresh_rows(
 pub fn sum_impulses(constraints: &[ContactConstraint], manifolds: &mut [Manifold]) {
     for c in constraints.iter().filter(|c| c.report) {
         let m = &mut manifolds[c.manifold as usize];
-        for (mp, p) in m.points_mut().iter_mut().zip(&c.points) {
+        let shares = friction_shares(c);
+        for ((mp, p), share) in m.points_mut().iter_mut().zip(&c.points).zip(shares) {
             mp.total_normal_impulse += p.normal_impulse;
-            mp.total_tangent_impulse +=
-                c.tangent1 * p.tangent_impulse.x + c.tangent2 * p.tangent_impulse.y;
+            mp.total_tangent_impulse += share.0;
         }
     }
+}
+
+/// Each point's share of its constraint's friction impulse (world frame, N·s) and twist
+/// impulse (N·m·s): its share of the normal impulse, or equal shares when none pushes.
+pub fn friction_shares(c: &ContactConstraint) -> [(Vec3, f32); MAX_POINTS] {
+    let points = &c.points[..c.len];
+    let total = points.iter().map(|p| p.normal_impulse).sum::<f32>();
+    let t = c.anchor.tangent_impulse;
+    let tangent = c.tangent1 * t.x + c.tangent2 * t.y;
+    let mut shares = [(Vec3::ZERO, 0.0); MAX_POINTS];
+    for (s, p) in shares.iter_mut().zip(points) {
+        let w = if total > 0.0 {
+            p.normal_impulse / total
+        } else {
+            1.0 / c.len as f32
+        };
+        *s = (tangent * w, c.anchor.twist_impulse * w);
+    }
+    shares
 }

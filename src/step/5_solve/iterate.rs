@@ -6,7 +6,8 @@
 use bevy::prelude::*;
 
 use crate::world::{
-    AngularRow, ContactConstraint, MAX_POINTS, RollingArms, SolverBody, body, row_velocity, store,
+    AngularRow, ContactConstraint, FrictionAnchor, MAX_POINTS, RollingArms, SolverBody, body,
+    row_velocity, store,
 };
 
 /// Linear impulse `p` on b and −p on a, with the angular parts `ang_a`, `ang_b`
@@ -36,7 +37,39 @@ fn apply_normal(
     apply(a, b, n * dl, [row.ia * dl, row.ib * dl], spin);
 }
 
-/// A friction impulse `d` (along tangent1, tangent2) at one point.
+/// A twist impulse `d` about the normal: +d on b, −d on a.
+#[inline]
+fn apply_twist(
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    f: &FrictionAnchor,
+    d: f32,
+    spin: [bool; 2],
+) {
+    if spin[0] {
+        a.w -= f.twist_ia * d;
+    }
+    if spin[1] {
+        b.w += f.twist_ib * d;
+    }
+}
+
+/// How fast b turns relative to a about the normal `n`, rad/s (a body that cannot
+/// turn has w = 0).
+#[inline]
+fn twist_velocity(a: &SolverBody, b: &SolverBody, n: Vec3) -> f32 {
+    b.w.dot(n) - a.w.dot(n)
+}
+
+/// `x` held to `lo..=hi` as the batched pass's `clamp` does it (a NaN stays NaN; no
+/// panic on a NaN bound).
+#[inline]
+fn clamp_to(x: f32, lo: f32, hi: f32) -> f32 {
+    let x = if x < lo { lo } else { x };
+    if x > hi { hi } else { x }
+}
+
+/// A friction impulse `d` (along tangent1, tangent2) at the friction anchor.
 #[inline]
 fn apply_tangent(
     a: &mut SolverBody,
@@ -79,24 +112,27 @@ fn warm_start_one(bodies: &mut [SolverBody], c: &ContactConstraint) {
             p.normal_impulse,
             c.spin,
         );
-        let tangents = [c.tangent1, c.tangent2];
-        apply_tangent(
-            &mut a,
-            &mut b,
-            tangents,
-            &p.tangent_rows,
-            p.tangent_impulse,
-            c.spin,
-        );
     }
+    let f = &c.anchor;
+    let tangents = [c.tangent1, c.tangent2];
+    apply_tangent(
+        &mut a,
+        &mut b,
+        tangents,
+        &f.tangent_rows,
+        f.tangent_impulse,
+        c.spin,
+    );
+    apply_twist(&mut a, &mut b, f, f.twist_impulse, c.spin);
     store(bodies, c.a, a);
     store(bodies, c.b, b);
 }
 
 /// One Gauss–Seidel pass over the listed contacts (the scalar ones of a step; the batched
 /// ones have their own pass, lane by lane the same as this): for each manifold, the
-/// normal rows of all its points (soft with bias, or rigid when relaxing), then the
-/// friction disc of each point clamped to μ·λn with the updated normal impulses.
+/// normal rows of all its points (soft with bias, or rigid when relaxing), then its
+/// friction anchor's disc clamped to μ·Σλn and twist clamped to μ·Σ λn·arm with the
+/// updated normal impulses.
 /// Accumulated impulses are clamped, never increments. Speculative points (s > 0) may
 /// close their gap, not more. Impulses act at the start-of-step anchors; the separation
 /// follows the anchors as the bodies move and turn.
@@ -212,27 +248,42 @@ fn solve_one<const ROLLS: bool>(
                 break;
             }
         }
-        // Friction, skipped for frictionless pairs (and when the effect is off).
+        // Friction, skipped for frictionless pairs (and when the effect is off): the
+        // disc at the anchor, clamped to μ·Σλn, then the twist, clamped to μ·Σ λn·arm.
         if c.friction > 0.0 {
+            let (mut total, mut moment) = (0.0f32, 0.0f32);
+            for p in &c.points[..c.len] {
+                total += p.normal_impulse;
+                moment += p.normal_impulse * p.twist_arm;
+            }
             let tangents = [c.tangent1, c.tangent2];
-            for p in c.points[..c.len].iter_mut() {
-                // Both tangent rows from the same velocity, then clamp to the disc: a round
-                // cone.
-                let [r1, r2] = &p.tangent_rows;
-                let vt = Vec2::new(
-                    row_velocity(&a, &b, c.tangent1, r1, spin),
-                    row_velocity(&a, &b, c.tangent2, r2, spin),
-                );
-                let old = p.tangent_impulse;
-                let limit = c.friction * p.normal_impulse;
-                let mut new = (old - p.tangent_mass * vt).clamp_length_max(limit);
-                // `clamp_length_max` passes NaN through: a body gone non-finite (it will be
-                // frozen at writeback) must not hand NaN to its neighbour through friction.
+            let f = &mut c.anchor;
+            // Both tangent rows from the same velocity, then clamp to the disc: a round
+            // cone.
+            let [r1, r2] = &f.tangent_rows;
+            let vt = Vec2::new(
+                row_velocity(&a, &b, c.tangent1, r1, spin),
+                row_velocity(&a, &b, c.tangent2, r2, spin),
+            );
+            let old = f.tangent_impulse;
+            let mut new = (old - f.tangent_mass * vt).clamp_length_max(c.friction * total);
+            // `clamp_length_max` passes NaN through: a body gone non-finite (it will be
+            // frozen at writeback) must not hand NaN to its neighbour through friction.
+            if !new.is_finite() {
+                new = Vec2::ZERO;
+            }
+            f.tangent_impulse = new;
+            apply_tangent(&mut a, &mut b, tangents, &f.tangent_rows, new - old, spin);
+            if f.twist_mass > 0.0 {
+                let limit = c.friction * moment;
+                let old = f.twist_impulse;
+                let vw = twist_velocity(&a, &b, c.normal);
+                let mut new = clamp_to(old - f.twist_mass * vw, -limit, limit);
                 if !new.is_finite() {
-                    new = Vec2::ZERO;
+                    new = 0.0;
                 }
-                p.tangent_impulse = new;
-                apply_tangent(&mut a, &mut b, tangents, &p.tangent_rows, new - old, spin);
+                f.twist_impulse = new;
+                apply_twist(&mut a, &mut b, f, new - old, spin);
             }
         }
         store(bodies, c.a, a);

@@ -139,6 +139,7 @@ pub fn solve_contacts(
             for p in m.points_mut() {
                 p.normal_impulse *= scale;
                 p.tangent_impulse *= scale;
+                p.twist_impulse *= scale;
             }
         }
     }
@@ -443,10 +444,10 @@ fn collect_active_bodies(world: &mut PhysicsWorld, active: &mut Vec<u32>) {
 fn store_impulses(world: &mut PhysicsWorld) {
     for c in &world.constraints {
         let m = &mut world.manifolds[c.manifold as usize];
-        let world_frame = |t: Vec2| c.tangent1 * t.x + c.tangent2 * t.y;
-        for (mp, cp) in m.points_mut().iter_mut().zip(&c.points) {
+        let shares = contact::friction_shares(c);
+        for ((mp, cp), share) in m.points_mut().iter_mut().zip(&c.points).zip(shares) {
             mp.normal_impulse = cp.normal_impulse;
-            mp.tangent_impulse = world_frame(cp.tangent_impulse);
+            (mp.tangent_impulse, mp.twist_impulse) = share;
             mp.approach_speed = (-cp.relative_velocity).max(0.0);
         }
     }

@@ -238,7 +238,8 @@ pub(crate) fn warm_start_steps(
 ) -> u32 {
     let chunk = |view: &mut SharedBodies, r: Range<usize>| {
         let points = &batches.points[batches.points_of(&r)];
-        warm_start_batches(view, &batches.batches[r], points);
+        let friction = &batches.friction[r.clone()];
+        warm_start_batches(view, &batches.batches[r], points, friction);
     };
     let serial = |view: &mut SharedBodies, step: &SolveStep| match step {
         SolveStep::Batches(r) => chunk(view, r.clone()),
@@ -268,18 +269,22 @@ pub(crate) fn solve_steps(
     let ContactBatches {
         batches: list,
         points,
+        friction,
         steps: all,
         ..
     } = batches;
     let points = Shared::new(points);
+    let friction = Shared::new(friction);
     let list = &list[..];
     let points_of = |r: &Range<usize>| list[r.start].first as usize..list[r.end - 1].range().end;
     let (sweeps, solved) = (AtomicU64::new(0), AtomicU64::new(0));
     let chunk = |view: &mut SharedBodies, r: Range<usize>| {
-        // SAFETY: a chunk's points are its batches' own; no other chunk has them.
-        let points = unsafe { points.slice(points_of(&r)) };
+        // SAFETY: a chunk's points and friction lanes are its batches' own; no other
+        // chunk has them.
+        let (points, friction) =
+            unsafe { (points.slice(points_of(&r)), friction.slice(r.clone())) };
         solved.fetch_add(r.len() as u64, Ordering::Relaxed);
-        let n = solve_batches(view, &list[r], points, h, use_bias, measure);
+        let n = solve_batches(view, &list[r], points, friction, h, use_bias, measure);
         sweeps.fetch_add(u64::from(n), Ordering::Relaxed);
     };
     let serial = |view: &mut SharedBodies, step: &SolveStep| match step {

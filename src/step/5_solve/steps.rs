@@ -21,7 +21,8 @@ pub(crate) fn warm_start_steps(
         match step {
             SolveStep::Batches(r) => {
                 let points = &batches.points[batches.points_of(r)];
-                warm_start_batches(bodies, &batches.batches[r.clone()], points);
+                let friction = &batches.friction[r.clone()];
+                warm_start_batches(bodies, &batches.batches[r.clone()], points, friction);
             }
             SolveStep::Scalar(c) => warm_start_listed(bodies, constraints, &[*c]),
         }
@@ -60,8 +61,10 @@ pub(crate) fn solve_steps(
             SolveStep::Batches(r) => {
                 let range = batches.points_of(r);
                 let points = &mut batches.points[range];
+                let friction = &mut batches.friction[r.clone()];
                 let list = &batches.batches[r.clone()];
-                work.sweeps += u64::from(solve_batches(bodies, list, points, h, use_bias, measure));
+                let sweeps = solve_batches(bodies, list, points, friction, h, use_bias, measure);
+                work.sweeps += u64::from(sweeps);
                 work.batches += list.len() as u64;
             }
             SolveStep::Scalar(c) => solve_listed(bodies, constraints, &[*c], arms, h, use_bias),

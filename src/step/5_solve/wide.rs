@@ -5,7 +5,7 @@
 //! contacts lane by lane ([`ContactBatch`]) and gathers its bodies' velocities.
 
 use crate::math::lanes::{F4, Q4, V3, clamp, eq, gt, lanes, le, lt, max, neg, select};
-use crate::world::{BodyView, ContactBatch, LANES, MAX_POINTS, PointLanes};
+use crate::world::{BodyView, ContactBatch, FrictionLanes, LANES, MAX_POINTS, PointLanes};
 
 use super::iterate::{NORMAL_SWEEPS, NORMAL_TOL};
 
@@ -90,7 +90,13 @@ struct RowLanes {
 impl RowLanes {
     #[inline(always)]
     fn new(inv_inertia: &[F4; 2], p: &PointLanes, d: V3) -> Self {
-        let (ra, rb) = (p.ra.cross(d), p.rb.cross(d));
+        Self::at(inv_inertia, p.ra, p.rb, d)
+    }
+
+    /// The row at anchors `ra`, `rb`.
+    #[inline(always)]
+    fn at(inv_inertia: &[F4; 2], ra: V3, rb: V3, d: V3) -> Self {
+        let (ra, rb) = (ra.cross(d), rb.cross(d));
         Self {
             ra,
             rb,
@@ -114,7 +120,23 @@ fn apply_normal(a: &mut BodyLanes, b: &mut BodyLanes, n: V3, row: &RowLanes, dl:
     b.push(p, row.ib.scale(dl), true);
 }
 
-/// A friction impulse `d` along the two tangents at one point.
+/// A twist impulse `d` about the normal `n`: +d on b, −d on a.
+#[inline(always)]
+fn apply_twist(a: &mut BodyLanes, b: &mut BodyLanes, inv_inertia: &[F4; 2], n: V3, d: F4) {
+    a.w = a.w.sub(n.scale(inv_inertia[0]).scale(d));
+    b.w = b.w.add(n.scale(inv_inertia[1]).scale(d));
+}
+
+/// The tangent rows at a batch's friction anchors.
+#[inline(always)]
+fn anchor_rows(c: &ContactBatch) -> [RowLanes; 2] {
+    [
+        RowLanes::at(&c.inv_inertia, c.anchor_ra, c.anchor_rb, c.tangents[0]),
+        RowLanes::at(&c.inv_inertia, c.anchor_ra, c.anchor_rb, c.tangents[1]),
+    ]
+}
+
+/// A friction impulse `d` along the two tangents at the friction anchor.
 #[inline(always)]
 fn apply_tangent(
     a: &mut BodyLanes,
@@ -129,14 +151,15 @@ fn apply_tangent(
 }
 
 /// [`warm_start_listed`](super::iterate::warm_start_listed) over the batches.
-/// `points` starts at the first batch's.
+/// `points` starts at the first batch's; `friction` holds the batches' own.
 pub fn warm_start_batches(
     bodies: &mut (impl BodyView + ?Sized),
     batches: &[ContactBatch],
     points: &[PointLanes],
+    friction: &[FrictionLanes],
 ) {
     let base = batches.first().map_or(0, |b| b.first as usize);
-    for c in batches {
+    for (c, f) in batches.iter().zip(friction) {
         let (mut a, mut b) = (
             BodyLanes::gather(bodies, c.a),
             BodyLanes::gather(bodies, c.b),
@@ -144,13 +167,11 @@ pub fn warm_start_batches(
         let range = c.range();
         for p in &points[range.start - base..range.end - base] {
             let normal = RowLanes::new(&c.inv_inertia, p, c.normal);
-            let tangent = [
-                RowLanes::new(&c.inv_inertia, p, c.tangents[0]),
-                RowLanes::new(&c.inv_inertia, p, c.tangents[1]),
-            ];
             apply_normal(&mut a, &mut b, c.normal, &normal, p.normal_impulse);
-            apply_tangent(&mut a, &mut b, &c.tangents, &tangent, p.tangent_impulse);
         }
+        let tangent = anchor_rows(c);
+        apply_tangent(&mut a, &mut b, &c.tangents, &tangent, f.tangent_impulse);
+        apply_twist(&mut a, &mut b, &c.inv_inertia, c.normal, f.twist_impulse);
         a.scatter(bodies, c.a, c.moved[0]);
         b.scatter(bodies, c.b, c.moved[1]);
     }
@@ -160,12 +181,14 @@ pub fn warm_start_batches(
 /// rolling motion). `points` starts at the first batch's. `measure`: the bodies have
 /// moved since the last pass, so measure the separations again (the scalar pass measures
 /// them in every pass; positions move only between substeps, so a stage's later passes,
-/// and the fixed contacts' second solve, reuse the same bits). Returns the sweeps over
-/// the batches' normal rows, all batches together (each batch sweeps at least once).
+/// and the fixed contacts' second solve, reuse the same bits). `friction` holds the
+/// batches' own. Returns the sweeps over the batches' normal rows, all batches together
+/// (each batch sweeps at least once).
 pub fn solve_batches(
     bodies: &mut (impl BodyView + ?Sized),
     batches: &[ContactBatch],
     points: &mut [PointLanes],
+    friction: &mut [FrictionLanes],
     h: f32,
     use_bias: bool,
     measure: bool,
@@ -173,13 +196,13 @@ pub fn solve_batches(
     let inv_h = F4::splat(1.0 / h);
     let base = batches.first().map_or(0, |b| b.first as usize);
     let mut sweeps = 0;
-    for c in batches {
+    for (c, f) in batches.iter().zip(friction) {
         let range = c.range();
         let points = &mut points[range.start - base..range.end - base];
         if measure {
             measure_batch(bodies, c, points);
         }
-        sweeps += solve_batch(bodies, c, points, inv_h, use_bias);
+        sweeps += solve_batch(bodies, c, points, f, inv_h, use_bias);
     }
     sweeps
 }
@@ -204,6 +227,7 @@ fn solve_batch(
     bodies: &mut (impl BodyView + ?Sized),
     c: &ContactBatch,
     point: &mut [PointLanes],
+    f: &mut FrictionLanes,
     inv_h: F4,
     use_bias: bool,
 ) -> u32 {
@@ -271,30 +295,43 @@ fn solve_batch(
         let settled = capped | le(largest, F4::splat(NORMAL_TOL) * total);
         active = active & !settled;
     }
-    // Friction (lanes of frictionless pairs do nothing).
+    // Friction at the anchors (lanes of frictionless pairs do nothing): the disc, then
+    // the twist.
     let rubs = gt(c.friction, zero);
-    for k in 0..n {
-        let p = &mut point[k];
-        let on = rubs & c.has[k];
-        let tangent = [
-            RowLanes::new(&c.inv_inertia, p, c.tangents[0]),
-            RowLanes::new(&c.inv_inertia, p, c.tangents[1]),
-        ];
-        let vt0 = row_velocity(&a, &b, c.tangents[0], &tangent[0]);
-        let vt1 = row_velocity(&a, &b, c.tangents[1], &tangent[1]);
-        let [old0, old1] = p.tangent_impulse;
-        let limit = c.friction * p.normal_impulse;
-        let (free0, free1) = (old0 - p.tangent_mass * vt0, old1 - p.tangent_mass * vt1);
-        let length_squared = free0 * free0 + free1 * free1;
-        let over = gt(length_squared, limit * limit);
-        let length = length_squared.sqrt();
-        let new0 = select(over, limit * (free0 / length), free0);
-        let new1 = select(over, limit * (free1 / length), free1);
-        let finite = new0.is_finite() & new1.is_finite();
-        let (new0, new1) = (select(finite, new0, zero), select(finite, new1, zero));
-        let d = [select(on, new0 - old0, zero), select(on, new1 - old1, zero)];
-        p.tangent_impulse = [select(on, new0, old0), select(on, new1, old1)];
-        apply_tangent(&mut a, &mut b, &c.tangents, &tangent, d);
+    let (mut total, mut moment) = (zero, zero);
+    for p in &*point {
+        total = total + p.normal_impulse;
+        moment = moment + p.normal_impulse * p.twist_arm;
+    }
+    let tangent = anchor_rows(c);
+    let vt0 = row_velocity(&a, &b, c.tangents[0], &tangent[0]);
+    let vt1 = row_velocity(&a, &b, c.tangents[1], &tangent[1]);
+    let [old0, old1] = f.tangent_impulse;
+    let limit = c.friction * total;
+    let (free0, free1) = (old0 - c.tangent_mass * vt0, old1 - c.tangent_mass * vt1);
+    let length_squared = free0 * free0 + free1 * free1;
+    let over = gt(length_squared, limit * limit);
+    let length = length_squared.sqrt();
+    let new0 = select(over, limit * (free0 / length), free0);
+    let new1 = select(over, limit * (free1 / length), free1);
+    let finite = new0.is_finite() & new1.is_finite();
+    let (new0, new1) = (select(finite, new0, zero), select(finite, new1, zero));
+    let d = [
+        select(rubs, new0 - old0, zero),
+        select(rubs, new1 - old1, zero),
+    ];
+    f.tangent_impulse = [select(rubs, new0, old0), select(rubs, new1, old1)];
+    apply_tangent(&mut a, &mut b, &c.tangents, &tangent, d);
+    let twists = rubs & gt(c.twist_mass, zero);
+    if twists.any() {
+        let limit = c.friction * moment;
+        let old = f.twist_impulse;
+        let vw = b.w.dot(c.normal) - a.w.dot(c.normal);
+        let new = clamp(old - c.twist_mass * vw, neg(limit), limit);
+        let new = select(new.is_finite(), new, zero);
+        let d = select(twists, new - old, zero);
+        f.twist_impulse = select(twists, new, old);
+        apply_twist(&mut a, &mut b, &c.inv_inertia, c.normal, d);
     }
     a.scatter(bodies, c.a, c.moved[0]);
     b.scatter(bodies, c.b, c.moved[1]);

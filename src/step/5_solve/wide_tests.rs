@@ -5,13 +5,14 @@
 
 use bevy::prelude::*;
 
+use super::contact::friction_anchor;
 use super::iterate::{solve_listed, warm_start_listed};
 use super::{Pass, solve_steps, warm_start_steps};
 use crate::math::Softness;
 use crate::rng::Rnd;
 use crate::world::{
-    Anchoring, AngularRow, ConstraintPoint, ContactBatches, ContactConstraint, LANES, NO_CONTACT,
-    NO_ROLL, STATIC, SolverBody, body, world_inv_inertia,
+    Anchoring, AngularRow, ConstraintPoint, ContactBatches, ContactConstraint, FrictionAnchor,
+    LANES, NO_CONTACT, NO_ROLL, STATIC, SolverBody, body, world_inv_inertia,
 };
 
 pub(super) fn random_body(r: &mut Rnd) -> SolverBody {
@@ -62,26 +63,22 @@ pub(super) fn random_contact(r: &mut Rnd, bodies: &[SolverBody], fixed: bool) ->
     let mut points = [ConstraintPoint::default(); 4];
     for p in &mut points[..len] {
         let (ra, rb) = (r.vec(-0.5, 0.5), r.vec(-0.5, 0.5));
-        let row = |d: Vec3| AngularRow::new(&sa, &sb, ra, rb, d);
-        let (normal_row, tangent_rows) = (row(normal), [row(t1), row(t2)]);
+        let normal_row = AngularRow::new(&sa, &sb, ra, rb, normal);
         let linear = sa.inv_mass + sb.inv_mass;
         let k = linear + normal_row.inv_mass(spin);
-        let kt = linear + 0.5 * (tangent_rows[0].inv_mass(spin) + tangent_rows[1].inv_mass(spin));
         *p = ConstraintPoint {
             ra,
             rb,
             // Some points apart (speculative), most touching or overlapping.
             adjusted_separation: r.range(-0.05, 0.02),
             normal_row,
-            tangent_rows,
             normal_mass: if k > 0.0 { 1.0 / k } else { 0.0 },
-            tangent_mass: if kt > 0.0 { 1.0 / kt } else { 0.0 },
             normal_impulse: if r.unit() < 0.3 {
                 0.0
             } else {
                 r.range(0.0, 2.0)
             },
-            tangent_impulse: Vec2::new(r.range(-0.5, 0.5), r.range(-0.5, 0.5)),
+            twist_arm: r.range(0.0, 0.7),
             max_normal_impulse: if r.unit() < 0.5 {
                 0.0
             } else {
@@ -90,7 +87,7 @@ pub(super) fn random_contact(r: &mut Rnd, bodies: &[SolverBody], fixed: bool) ->
             relative_velocity: r.range(-4.0, 1.0),
         };
     }
-    ContactConstraint {
+    let mut c = ContactConstraint {
         a,
         b,
         manifold: 0,
@@ -120,7 +117,13 @@ pub(super) fn random_contact(r: &mut Rnd, bodies: &[SolverBody], fixed: bool) ->
         max_push: if r.unit() < 0.3 { 0.05 } else { 3.0 },
         points,
         len,
-    }
+        anchor: FrictionAnchor::default(),
+    };
+    let anchor = (r.vec(-0.5, 0.5), r.vec(-0.5, 0.5));
+    c.anchor = friction_anchor(&sa, &sb, anchor, &c, len);
+    c.anchor.tangent_impulse = Vec2::new(r.range(-0.5, 0.5), r.range(-0.5, 0.5));
+    c.anchor.twist_impulse = if len > 1 { r.range(-0.3, 0.3) } else { 0.0 };
+    c
 }
 
 pub(super) fn assert_same(bodies: &[SolverBody], reference: &[SolverBody], what: &str) {
@@ -182,12 +185,16 @@ fn batched_passes_compute_the_scalar_passes_bit_for_bit() {
             for (p, q) in x.points[..x.len].iter().zip(&y.points) {
                 assert!(
                     p.normal_impulse == q.normal_impulse
-                        && p.tangent_impulse == q.tangent_impulse
                         && p.max_normal_impulse == q.max_normal_impulse
                         && p.relative_velocity == q.relative_velocity,
                     "round {round}: contact {i}: {p:?} against {q:?}"
                 );
             }
+            let (f, g) = (&x.anchor, &y.anchor);
+            assert!(
+                f.tangent_impulse == g.tangent_impulse && f.twist_impulse == g.twist_impulse,
+                "round {round}: contact {i}: {f:?} against {g:?}"
+            );
         }
     }
     // The test means something only if the lanes are mostly full.
