@@ -16,7 +16,9 @@ use std::ops::Range;
 
 use bevy::prelude::*;
 
-use super::{ContactBatch, ContactConstraint, FrictionLanes, PointLanes, STATIC, SolverBody};
+use super::{
+    AnchorLanes, ContactBatch, ContactConstraint, FrictionLanes, PointLanes, STATIC, SolverBody,
+};
 
 /// Contacts solved side by side in one batch (SSE2's four f32 lanes).
 pub(crate) const LANES: usize = 4;
@@ -43,6 +45,8 @@ pub(crate) struct ContactBatches {
     pub batches: Vec<ContactBatch>,
     /// The batches' points, lane by lane ([`ContactBatch::range`]).
     pub points: Vec<PointLanes>,
+    /// The points' anchors, the same index as `points`.
+    pub anchors: Vec<AnchorLanes>,
     /// The batches' friction impulses, one a batch.
     pub friction: Vec<FrictionLanes>,
     /// The pass: batches and scalar contacts, the contacts with fixed colliders first.
@@ -102,6 +106,7 @@ impl ContactBatches {
     ) {
         self.batches.clear();
         self.points.clear();
+        self.anchors.clear();
         self.friction.clear();
         self.steps.clear();
         self.stamp.clear();
@@ -177,7 +182,7 @@ impl ContactBatches {
                         constraints,
                         bodies,
                         lanes,
-                        &mut self.points,
+                        (&mut self.points, &mut self.anchors),
                         &mut self.friction,
                     );
                     self.batches.push(batch);
@@ -191,7 +196,7 @@ impl ContactBatches {
                     constraints,
                     bodies,
                     lanes,
-                    &mut self.points,
+                    (&mut self.points, &mut self.anchors),
                     &mut self.friction,
                 );
                 self.batches.push(batch);

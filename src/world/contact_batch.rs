@@ -12,15 +12,16 @@ use super::{
 };
 use crate::math::lanes::{F4, V3};
 
-/// One point of each lane's contact; zeros past a contact's points. Only what the
-/// passes change or cannot rebuild: the rows' angular parts (see [`AngularRow`](super::AngularRow)) are
-/// rebuilt from the anchors in each pass, which costs less than loading them (the big
-/// scenes' constraints did not fit the cache).
+/// One point of each lane's contact; zeros past a contact's points. The normal row's
+/// lever arms are kept as prepared; their images under the inverse inertia (see
+/// [`AngularRow`](super::AngularRow)) are rebuilt in each pass (a scale by the batch's
+/// isotropic inertia costs less than loading them: the big scenes' constraints did not
+/// fit the cache).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PointLanes {
-    /// Anchors from each body's centre, world frame, start of step, m.
-    pub ra: V3,
-    pub rb: V3,
+    /// The normal row's lever arms ra × n and rb × n, m.
+    pub normal_ra: V3,
+    pub normal_rb: V3,
     /// See [`ConstraintPoint::adjusted_separation`], m.
     pub adjusted_separation: F4,
     /// Effective mass, kg.
@@ -35,6 +36,23 @@ pub(crate) struct PointLanes {
     /// The separation now (positions move only between substeps), as the first pass
     /// after they moved measured it, m.
     pub separation: F4,
+}
+
+/// One point of each lane's contact, beside its [`PointLanes`] (`ContactBatches::anchors`,
+/// the same index): what only the pass that measures the separations reads, kept apart
+/// so that the other passes load less.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct AnchorLanes {
+    /// Anchors from each body's centre, world frame, start of step, m.
+    pub ra: V3,
+    pub rb: V3,
+}
+
+impl AnchorLanes {
+    const ZERO: Self = Self {
+        ra: V3::ZERO,
+        rb: V3::ZERO,
+    };
 }
 
 /// What the passes change of a batch's friction anchors (see
@@ -98,8 +116,8 @@ const ALL: f32 = f32::from_bits(u32::MAX);
 
 impl PointLanes {
     const ZERO: Self = Self {
-        ra: V3::ZERO,
-        rb: V3::ZERO,
+        normal_ra: V3::ZERO,
+        normal_rb: V3::ZERO,
         adjusted_separation: F4::ZERO,
         normal_mass: F4::ZERO,
         normal_impulse: F4::ZERO,
@@ -110,8 +128,8 @@ impl PointLanes {
     };
 
     fn set(&mut self, l: usize, p: &ConstraintPoint) {
-        self.ra.set(l, p.ra);
-        self.rb.set(l, p.rb);
+        self.normal_ra.set(l, p.normal_row.ra);
+        self.normal_rb.set(l, p.normal_row.rb);
         set(&mut self.adjusted_separation, l, p.adjusted_separation);
         set(&mut self.normal_mass, l, p.normal_mass);
         set(&mut self.normal_impulse, l, p.normal_impulse);
@@ -129,13 +147,13 @@ impl PointLanes {
 }
 
 impl ContactBatch {
-    /// The batch of the listed constraints, its points appended to `points` and its
-    /// friction impulses to `friction`.
+    /// The batch of the listed constraints, its points appended to `points` and
+    /// `anchors` and its friction impulses to `friction`.
     pub(crate) fn new(
         constraints: &[ContactConstraint],
         bodies: &[SolverBody],
         contact: [u32; LANES],
-        points: &mut Vec<PointLanes>,
+        (points, anchors): (&mut Vec<PointLanes>, &mut Vec<AnchorLanes>),
         friction: &mut Vec<FrictionLanes>,
     ) -> Self {
         let mut rubbing = FrictionLanes::default();
@@ -143,7 +161,8 @@ impl ContactBatch {
         let len = |ci: u32| (ci != NO_CONTACT).then(|| constraints[ci as usize].len);
         let most = contact.iter().filter_map(|&ci| len(ci)).max().unwrap_or(0);
         points.resize(first + most, PointLanes::ZERO);
-        let point = &mut points[first..];
+        anchors.resize(first + most, AnchorLanes::ZERO);
+        let (point, anchor) = (&mut points[first..], &mut anchors[first..]);
         let mut b = Self {
             contact,
             a: [STATIC; LANES],
@@ -207,6 +226,8 @@ impl ContactBatch {
             for k in 0..c.len {
                 set(&mut b.has[k], l, ALL);
                 point[k].set(l, &c.points[k]);
+                anchor[k].ra.set(l, c.points[k].ra);
+                anchor[k].rb.set(l, c.points[k].rb);
             }
         }
         friction.push(rubbing);

@@ -23,7 +23,7 @@ pub(crate) use constraint::{
     Anchoring, AngularRow, ConstraintPoint, ContactConstraint, ContactParams, FrictionAnchor,
     NO_ROLL, RollingArms, body, row_velocity, store,
 };
-pub(crate) use contact_batch::{ContactBatch, FrictionLanes, PointLanes};
+pub(crate) use contact_batch::{AnchorLanes, ContactBatch, FrictionLanes, PointLanes};
 pub(crate) use fixed_set::FixedSet;
 pub(crate) use joint::{JointConstraint, JointRows, ordered_pair};
 pub(crate) use manifold::{Anchors, MAX_POINTS, Manifold};

@@ -269,6 +269,7 @@ pub(crate) fn solve_steps(
     let ContactBatches {
         batches: list,
         points,
+        anchors,
         friction,
         steps: all,
         ..
@@ -284,7 +285,8 @@ pub(crate) fn solve_steps(
         let (points, friction) =
             unsafe { (points.slice(points_of(&r)), friction.slice(r.clone())) };
         solved.fetch_add(r.len() as u64, Ordering::Relaxed);
-        let n = solve_batches(view, &list[r], points, friction, h, use_bias, measure);
+        let anchors = measure.then(|| &anchors[points_of(&r)]);
+        let n = solve_batches(view, &list[r], points, friction, h, use_bias, anchors);
         sweeps.fetch_add(u64::from(n), Ordering::Relaxed);
     };
     let serial = |view: &mut SharedBodies, step: &SolveStep| match step {

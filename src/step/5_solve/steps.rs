@@ -60,10 +60,11 @@ pub(crate) fn solve_steps(
         match step {
             SolveStep::Batches(r) => {
                 let range = batches.points_of(r);
+                let anchors = measure.then(|| &batches.anchors[range.clone()]);
                 let points = &mut batches.points[range];
                 let friction = &mut batches.friction[r.clone()];
                 let list = &batches.batches[r.clone()];
-                let sweeps = solve_batches(bodies, list, points, friction, h, use_bias, measure);
+                let sweeps = solve_batches(bodies, list, points, friction, h, use_bias, anchors);
                 work.sweeps += u64::from(sweeps);
                 work.batches += list.len() as u64;
             }

@@ -5,7 +5,9 @@
 //! contacts lane by lane ([`ContactBatch`]) and gathers its bodies' velocities.
 
 use crate::math::lanes::{F4, Q4, V3, clamp, eq, gt, lanes, le, lt, max, neg, select};
-use crate::world::{BodyView, ContactBatch, FrictionLanes, LANES, MAX_POINTS, PointLanes};
+use crate::world::{
+    AnchorLanes, BodyView, ContactBatch, FrictionLanes, LANES, MAX_POINTS, PointLanes,
+};
 
 use super::iterate::{NORMAL_SWEEPS, NORMAL_TOL};
 
@@ -88,9 +90,15 @@ struct RowLanes {
 }
 
 impl RowLanes {
+    /// A point's normal row, from its prepared lever arms.
     #[inline(always)]
-    fn new(inv_inertia: &[F4; 2], p: &PointLanes, d: V3) -> Self {
-        Self::at(inv_inertia, p.ra, p.rb, d)
+    fn normal(inv_inertia: &[F4; 2], p: &PointLanes) -> Self {
+        Self {
+            ra: p.normal_ra,
+            rb: p.normal_rb,
+            ia: p.normal_ra.scale(inv_inertia[0]),
+            ib: p.normal_rb.scale(inv_inertia[1]),
+        }
     }
 
     /// The row at anchors `ra`, `rb`.
@@ -166,7 +174,7 @@ pub fn warm_start_batches(
         );
         let range = c.range();
         for p in &points[range.start - base..range.end - base] {
-            let normal = RowLanes::new(&c.inv_inertia, p, c.normal);
+            let normal = RowLanes::normal(&c.inv_inertia, p);
             apply_normal(&mut a, &mut b, c.normal, &normal, p.normal_impulse);
         }
         let tangent = anchor_rows(c);
@@ -178,12 +186,13 @@ pub fn warm_start_batches(
 }
 
 /// [`solve_listed`](super::iterate::solve_listed) over the batches (contacts without a
-/// rolling motion). `points` starts at the first batch's. `measure`: the bodies have
-/// moved since the last pass, so measure the separations again (the scalar pass measures
-/// them in every pass; positions move only between substeps, so a stage's later passes,
-/// and the fixed contacts' second solve, reuse the same bits). `friction` holds the
-/// batches' own. Returns the sweeps over the batches' normal rows, all batches together
-/// (each batch sweeps at least once).
+/// rolling motion). `points` starts at the first batch's. `measure`, the points'
+/// anchors (the same index as `points`): the bodies have moved since the last pass, so
+/// measure the separations again (the scalar pass measures them in every pass;
+/// positions move only between substeps, so a stage's later passes, and the fixed
+/// contacts' second solve, reuse the same bits). `friction` holds the batches' own.
+/// Returns the sweeps over the batches' normal rows, all batches together (each batch
+/// sweeps at least once).
 pub fn solve_batches(
     bodies: &mut (impl BodyView + ?Sized),
     batches: &[ContactBatch],
@@ -191,17 +200,18 @@ pub fn solve_batches(
     friction: &mut [FrictionLanes],
     h: f32,
     use_bias: bool,
-    measure: bool,
+    measure: Option<&[AnchorLanes]>,
 ) -> u32 {
     let inv_h = F4::splat(1.0 / h);
     let base = batches.first().map_or(0, |b| b.first as usize);
     let mut sweeps = 0;
     for (c, f) in batches.iter().zip(friction) {
         let range = c.range();
-        let points = &mut points[range.start - base..range.end - base];
-        if measure {
-            measure_batch(bodies, c, points);
+        let range = range.start - base..range.end - base;
+        if let Some(anchors) = measure {
+            measure_batch(bodies, c, &mut points[range.clone()], &anchors[range.clone()]);
         }
+        let points = &mut points[range];
         sweeps += solve_batch(bodies, c, points, f, inv_h, use_bias);
     }
     sweeps
@@ -209,15 +219,20 @@ pub fn solve_batches(
 
 /// Each point's separation now, from the bodies' motion since the step began.
 #[inline(always)]
-fn measure_batch(bodies: &(impl BodyView + ?Sized), c: &ContactBatch, point: &mut [PointLanes]) {
+fn measure_batch(
+    bodies: &(impl BodyView + ?Sized),
+    c: &ContactBatch,
+    point: &mut [PointLanes],
+    anchor: &[AnchorLanes],
+) {
     let (a, b) = (
         PoseLanes::gather(bodies, c.a),
         PoseLanes::gather(bodies, c.b),
     );
     let dp = b.dp.sub(a.dp);
-    for p in point {
-        let ca = V3::select(c.turn[0], a.dq.rotate(p.ra), p.ra);
-        let cb = V3::select(c.turn[1], b.dq.rotate(p.rb), p.rb);
+    for (p, r) in point.iter_mut().zip(anchor) {
+        let ca = V3::select(c.turn[0], a.dq.rotate(r.ra), r.ra);
+        let cb = V3::select(c.turn[1], b.dq.rotate(r.rb), r.rb);
         p.separation = c.normal.dot(dp.add(cb).sub(ca)) + p.adjusted_separation;
     }
 }
@@ -244,7 +259,7 @@ fn solve_batch(
         ib: V3::ZERO,
     }; MAX_POINTS];
     for (row, p) in normal.iter_mut().zip(&*point) {
-        *row = RowLanes::new(&c.inv_inertia, p, c.normal);
+        *row = RowLanes::normal(&c.inv_inertia, p);
     }
     // The normal sweeps: a lane stops as the scalar pass does (one sweep for a single
     // point, at most NORMAL_SWEEPS, none after a settled or capped one).
