@@ -31,6 +31,13 @@ const SPLIT_FROM: usize = 2 * MIN_CHUNK;
 /// The fewest batches a pass's split levels must hold for a second thread to be worth
 /// waking (per pass, each wait costs about a microsecond).
 const PASS_FROM: usize = 256;
+/// The fewest batches a pass's split levels must hold on average: each level ends in a
+/// wait for both threads, and the bodies it moved cross to the other core's cache. At
+/// two threads, the pass on one thread against split, in one interleaved run of both
+/// (`peers`, three runs): the 385-cube pyramid (6.4 batches a split level) 0.86–0.95 of
+/// the split time and the large pyramid (8.3) 0.90–0.95; the 100 pyramids (71) took
+/// 1.02–1.20 of it, and rain (45) and the ball pit (64) the same.
+const LEVEL_FROM: usize = 16;
 
 /// The claim word's step before the first level and after the last.
 const IDLE: u32 = u32::MAX - 1;
@@ -64,16 +71,14 @@ fn piece(step: &SolveStep, i: u32) -> Range<usize> {
 /// Whether `steps` are worth splitting on this app's compute pool.
 pub(crate) fn worth_splitting(batches: &ContactBatches, steps: &Range<usize>) -> bool {
     let threads = bevy::tasks::ComputeTaskPool::try_get().map_or(1, |p| p.thread_num());
-    threads >= 2
-        && batches.steps[steps.clone()]
-            .iter()
-            .filter(|s| chunks(s).is_some())
-            .map(|s| match s {
-                SolveStep::Batches(r) => r.len(),
-                SolveStep::Scalar(_) => 0,
-            })
-            .sum::<usize>()
-            >= PASS_FROM
+    let (levels, split) = batches.steps[steps.clone()]
+        .iter()
+        .filter(|s| chunks(s).is_some())
+        .fold((0, 0), |(levels, split), s| match s {
+            SolveStep::Batches(r) => (levels + 1, split + r.len()),
+            SolveStep::Scalar(_) => (levels, split),
+        });
+    threads >= 2 && split >= PASS_FROM && split >= LEVEL_FROM * levels
 }
 
 /// The state the leader and the helper share over one pass.
