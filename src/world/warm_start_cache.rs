@@ -1,6 +1,8 @@
 //! Last step's manifolds, found by entity pair: where the narrow phase looks up the
 //! impulses a contact starts from.
 
+use std::sync::OnceLock;
+
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 
@@ -14,13 +16,16 @@ pub(crate) type PairKey = (Entity, Entity, u32);
 ///
 /// The index holds a 4-byte place, not the 268-byte manifold: copying each manifold into
 /// a map every step (15,000 manifolds, 4 MB a step on the large pyramid) held 2.4 % of
-/// that scene's samples in the map's inserts, and more in `memmove`.
+/// that scene's samples in the map's inserts, and more in `memmove`. And it is made only
+/// when a lookup first misses the place it was looked for at (see [`Self::find`]): a
+/// step whose pairs are last step's, in the same order, makes none (the inserts were
+/// still 2 % of the 100 pyramids' samples).
 #[derive(Default, Debug)]
 pub(crate) struct WarmStartCache {
     /// Last step's manifolds, in last step's order.
     manifolds: Vec<Manifold>,
-    /// Each pair's place in `manifolds`.
-    index: HashMap<PairKey, u32>,
+    /// Each pair's place in `manifolds`, made from `keys` when first needed.
+    index: OnceLock<HashMap<PairKey, u32>>,
     /// Each manifold's pair, in `manifolds`' order (see [`Self::find`]).
     keys: Vec<PairKey>,
     /// Whether `index` was made from the array the next [`Self::take_over`] takes.
@@ -31,14 +36,9 @@ impl WarmStartCache {
     /// Indexes this step's `manifolds` (their pairs named by `key`) for the next step,
     /// which hands the array over with [`Self::take_over`].
     pub(crate) fn index(&mut self, manifolds: &[Manifold], key: impl Fn(&Manifold) -> PairKey) {
-        self.index.clear();
-        self.index.reserve(manifolds.len());
+        self.index = OnceLock::new();
         self.keys.clear();
-        for (i, m) in manifolds.iter().enumerate() {
-            let k = key(m);
-            self.index.insert(k, i as u32);
-            self.keys.push(k);
-        }
+        self.keys.extend(manifolds.iter().map(key));
         self.indexed = true;
     }
 
@@ -68,7 +68,14 @@ impl WarmStartCache {
         let i = if self.keys.get(*next) == Some(key) {
             *next
         } else {
-            *self.index.get(key)? as usize
+            let index = self.index.get_or_init(|| {
+                let mut index = HashMap::with_capacity(self.keys.len());
+                for (i, &k) in self.keys.iter().enumerate() {
+                    index.insert(k, i as u32);
+                }
+                index
+            });
+            *index.get(key)? as usize
         };
         *next = i + 1;
         debug_assert!(i < self.manifolds.len(), "indexed, then cut");
@@ -78,7 +85,7 @@ impl WarmStartCache {
     /// Forgets everything (no contacts this step).
     pub(crate) fn clear(&mut self) {
         self.keys.clear();
-        self.index.clear();
+        self.index = OnceLock::new();
         self.manifolds.clear();
         self.indexed = false;
     }
