@@ -296,10 +296,14 @@ fn solve_batch(
             let lambda =
                 neg(p.normal_mass) * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
             let new = max(p.normal_impulse + lambda, zero);
+            // A point's first push of the step records its approach speed: after that
+            // no lane needs it, so it is tested for before the clamp is paid.
             let first = on & eq(p.max_normal_impulse, zero) & gt(new, zero);
-            let prepared = p.relative_velocity;
-            let approach = clamp(vn, prepared - c.approach_gain, prepared);
-            p.relative_velocity = select(first, approach, prepared);
+            if first.any() {
+                let prepared = p.relative_velocity;
+                let approach = clamp(vn, prepared - c.approach_gain, prepared);
+                p.relative_velocity = select(first, approach, prepared);
+            }
             let dl = select(on, new - p.normal_impulse, zero);
             p.normal_impulse = select(on, new, p.normal_impulse);
             p.max_normal_impulse = select(on, max(p.max_normal_impulse, new), p.max_normal_impulse);
