@@ -252,15 +252,19 @@ fn solve_batch(
         BodyLanes::gather(bodies, c.b),
     );
     let n = point.len();
-    let mut normal = [RowLanes {
-        ra: V3::ZERO,
-        rb: V3::ZERO,
-        ia: V3::ZERO,
-        ib: V3::ZERO,
-    }; MAX_POINTS];
-    for (row, p) in normal.iter_mut().zip(&*point) {
-        *row = RowLanes::normal(&c.inv_inertia, p);
+    // The rows of the batch's points; the slots past them are never written or read
+    // (an array of zeros, filled in afterwards, was a `memset` call per batch and pass).
+    debug_assert!(point.len() <= MAX_POINTS, "a batch holds at most MAX_POINTS points");
+    let mut rows = [std::mem::MaybeUninit::<RowLanes>::uninit(); MAX_POINTS];
+    for (row, p) in rows.iter_mut().zip(&*point) {
+        row.write(RowLanes::normal(&c.inv_inertia, p));
     }
+    // Read only as `normal(k)` for k < n, by the sweeps below.
+    let normal = |k: usize| {
+        debug_assert!(k < n, "row {k} of a batch of {n} points");
+        // SAFETY: slot k < n = point.len() was written just above (n ≤ MAX_POINTS).
+        unsafe { rows[k].assume_init_ref() }
+    };
     // The normal sweeps: a lane stops as the scalar pass does (one sweep for a single
     // point, at most NORMAL_SWEEPS, none after a settled or capped one).
     let multi = c.has[1];
@@ -292,7 +296,7 @@ fn solve_batch(
             } else {
                 (select(speculative, s * inv_h, zero), one, zero)
             };
-            let vn = row_velocity(&a, &b, c.normal, &normal[k]);
+            let vn = row_velocity(&a, &b, c.normal, normal(k));
             let lambda =
                 neg(p.normal_mass) * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
             let new = max(p.normal_impulse + lambda, zero);
@@ -307,7 +311,7 @@ fn solve_batch(
             let dl = select(on, new - p.normal_impulse, zero);
             p.normal_impulse = select(on, new, p.normal_impulse);
             p.max_normal_impulse = select(on, max(p.max_normal_impulse, new), p.max_normal_impulse);
-            apply_normal(&mut a, &mut b, c.normal, &normal[k], dl);
+            apply_normal(&mut a, &mut b, c.normal, normal(k), dl);
             largest = max(largest, dl.abs());
             total = total + select(on, new, zero);
         }
