@@ -95,9 +95,11 @@ pub(crate) struct ContactBatch {
     pub max_push: F4,
     /// All-ones lanes whose contact has more than k points, per k.
     pub has: [F4; MAX_POINTS],
-    /// The friction anchors (see [`FrictionAnchor`](super::FrictionAnchor)), m.
-    pub anchor_ra: V3,
-    pub anchor_rb: V3,
+    /// The tangent rows' lever arms at the friction anchors (see
+    /// [`FrictionAnchor`](super::FrictionAnchor)) as prepared: ra × t and rb × t for
+    /// each tangent t, m.
+    pub tangent_ra: [V3; 2],
+    pub tangent_rb: [V3; 2],
     /// kg, kg·m² (0: no twist row).
     pub tangent_mass: F4,
     pub twist_mass: F4,
@@ -179,8 +181,8 @@ impl ContactBatch {
             impulse_scale: F4::ZERO,
             max_push: F4::ZERO,
             has: [F4::ZERO; MAX_POINTS],
-            anchor_ra: V3::ZERO,
-            anchor_rb: V3::ZERO,
+            tangent_ra: [V3::ZERO; 2],
+            tangent_rb: [V3::ZERO; 2],
             tangent_mass: F4::ZERO,
             twist_mass: F4::ZERO,
             first: first as u32,
@@ -216,8 +218,10 @@ impl ContactBatch {
             set(&mut b.impulse_scale, l, c.softness.impulse_scale);
             set(&mut b.max_push, l, c.max_push);
             let f = &c.anchor;
-            b.anchor_ra.set(l, f.ra);
-            b.anchor_rb.set(l, f.rb);
+            for (k, row) in f.tangent_rows.iter().enumerate() {
+                b.tangent_ra[k].set(l, row.ra);
+                b.tangent_rb[k].set(l, row.rb);
+            }
             set(&mut b.tangent_mass, l, f.tangent_mass);
             set(&mut b.twist_mass, l, f.twist_mass);
             set(&mut rubbing.tangent_impulse[0], l, f.tangent_impulse.x);

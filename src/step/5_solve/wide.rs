@@ -93,18 +93,12 @@ impl RowLanes {
     /// A point's normal row, from its prepared lever arms.
     #[inline(always)]
     fn normal(inv_inertia: &[F4; 2], p: &PointLanes) -> Self {
-        Self {
-            ra: p.normal_ra,
-            rb: p.normal_rb,
-            ia: p.normal_ra.scale(inv_inertia[0]),
-            ib: p.normal_rb.scale(inv_inertia[1]),
-        }
+        Self::of(inv_inertia, p.normal_ra, p.normal_rb)
     }
 
-    /// The row at anchors `ra`, `rb`.
+    /// The row of lever arms `ra` (r × d) and `rb`.
     #[inline(always)]
-    fn at(inv_inertia: &[F4; 2], ra: V3, rb: V3, d: V3) -> Self {
-        let (ra, rb) = (ra.cross(d), rb.cross(d));
+    fn of(inv_inertia: &[F4; 2], ra: V3, rb: V3) -> Self {
         Self {
             ra,
             rb,
@@ -139,8 +133,8 @@ fn apply_twist(a: &mut BodyLanes, b: &mut BodyLanes, inv_inertia: &[F4; 2], n: V
 #[inline(always)]
 fn anchor_rows(c: &ContactBatch) -> [RowLanes; 2] {
     [
-        RowLanes::at(&c.inv_inertia, c.anchor_ra, c.anchor_rb, c.tangents[0]),
-        RowLanes::at(&c.inv_inertia, c.anchor_ra, c.anchor_rb, c.tangents[1]),
+        RowLanes::of(&c.inv_inertia, c.tangent_ra[0], c.tangent_rb[0]),
+        RowLanes::of(&c.inv_inertia, c.tangent_ra[1], c.tangent_rb[1]),
     ]
 }
 
