@@ -203,7 +203,12 @@ pub fn solve_batches(
         let range = c.range();
         let range = range.start - base..range.end - base;
         if let Some(anchors) = measure {
-            measure_batch(bodies, c, &mut points[range.clone()], &anchors[range.clone()]);
+            measure_batch(
+                bodies,
+                c,
+                &mut points[range.clone()],
+                &anchors[range.clone()],
+            );
         }
         let points = &mut points[range];
         sweeps += solve_batch(bodies, c, points, f, inv_h, use_bias);
@@ -248,7 +253,7 @@ fn solve_batch(
     let n = point.len();
     // The rows of the batch's points; the slots past them are never written or read
     // (an array of zeros, filled in afterwards, was a `memset` call per batch and pass).
-    debug_assert!(point.len() <= MAX_POINTS, "a batch holds at most MAX_POINTS points");
+    debug_assert!(n <= MAX_POINTS, "a batch holds at most MAX_POINTS points");
     let mut rows = [std::mem::MaybeUninit::<RowLanes>::uninit(); MAX_POINTS];
     for (row, p) in rows.iter_mut().zip(&*point) {
         row.write(RowLanes::normal(&c.inv_inertia, p));
