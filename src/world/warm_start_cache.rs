@@ -1,7 +1,7 @@
 //! Last step's manifolds, found by entity pair: where the narrow phase looks up the
 //! impulses a contact starts from.
 
-use std::sync::OnceLock;
+use std::sync::{Mutex, OnceLock};
 
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
@@ -26,6 +26,9 @@ pub(crate) struct WarmStartCache {
     manifolds: Vec<Manifold>,
     /// Each pair's place in `manifolds`, made from `keys` when first needed.
     index: OnceLock<HashMap<PairKey, u32>>,
+    /// The last index made, emptied, kept for its capacity: the next one is made in it,
+    /// so a scene whose pairs change every step does not allocate a map every step.
+    spare: Mutex<HashMap<PairKey, u32>>,
     /// Each manifold's pair, in `manifolds`' order (see [`Self::find`]).
     keys: Vec<PairKey>,
     /// Whether `index` was made from the array the next [`Self::take_over`] takes.
@@ -36,7 +39,7 @@ impl WarmStartCache {
     /// Indexes this step's `manifolds` (their pairs named by `key`) for the next step,
     /// which hands the array over with [`Self::take_over`].
     pub(crate) fn index(&mut self, manifolds: &[Manifold], key: impl Fn(&Manifold) -> PairKey) {
-        self.index = OnceLock::new();
+        self.forget_index();
         self.keys.clear();
         self.keys.extend(manifolds.iter().map(key));
         self.indexed = true;
@@ -69,7 +72,13 @@ impl WarmStartCache {
             *next
         } else {
             let index = self.index.get_or_init(|| {
-                let mut index = HashMap::with_capacity(self.keys.len());
+                // A poisoned lock (a panic elsewhere while it was held) only costs the
+                // spare capacity.
+                let mut index = self
+                    .spare
+                    .lock()
+                    .map_or_else(|_| HashMap::default(), |mut s| std::mem::take(&mut *s));
+                index.reserve(self.keys.len());
                 for (i, &k) in self.keys.iter().enumerate() {
                     index.insert(k, i as u32);
                 }
@@ -85,9 +94,19 @@ impl WarmStartCache {
     /// Forgets everything (no contacts this step).
     pub(crate) fn clear(&mut self) {
         self.keys.clear();
-        self.index = OnceLock::new();
+        self.forget_index();
         self.manifolds.clear();
         self.indexed = false;
+    }
+
+    /// Drops the index, keeping its map (emptied) as the spare.
+    fn forget_index(&mut self) {
+        if let Some(mut old) = self.index.take() {
+            old.clear();
+            if let Ok(spare) = self.spare.get_mut() {
+                *spare = old;
+            }
+        }
     }
 }
 
@@ -130,5 +149,36 @@ mod tests {
         cache.take_over(&mut manifolds);
         assert!(cache.find(&(e1, e2, 7), &mut 0).is_none());
         assert!(cache.find(&(e1, e2, 0), &mut 0).is_none());
+    }
+
+    #[test]
+    fn the_index_is_made_only_on_a_miss_and_its_map_is_reused() {
+        let (e1, e2) = (
+            Entity::from_raw_u32(1).unwrap(),
+            Entity::from_raw_u32(2).unwrap(),
+        );
+        let key = |m: &Manifold| (e1, e2, m.sub);
+        let mut cache = WarmStartCache::default();
+        let mut manifolds: Vec<Manifold> = (0..64).map(manifold).collect();
+        cache.index(&manifolds, key);
+        cache.take_over(&mut manifolds);
+        // Every pair where it was: no map.
+        let mut next = 0;
+        for sub in 0..64 {
+            assert_eq!(
+                cache.find(&(e1, e2, sub), &mut next).map(|m| m.sub),
+                Some(sub)
+            );
+        }
+        assert!(cache.index.get().is_none(), "made without a miss");
+        // A pair out of place: the map is made, and finds it.
+        assert_eq!(cache.find(&(e1, e2, 40), &mut 3).map(|m| m.sub), Some(40));
+        let made = cache.index.get().expect("made on the miss").capacity();
+        assert!(made >= 64);
+        // The next step's index starts from that map, emptied.
+        manifolds.extend((0..64).map(manifold));
+        cache.index(&manifolds, key);
+        let spare = cache.spare.lock().unwrap();
+        assert!(spare.is_empty() && spare.capacity() == made);
     }
 }
