@@ -91,6 +91,23 @@ impl WarmStartCache {
         self.manifolds.get(i)
     }
 
+    /// How many manifolds last step left.
+    pub(crate) fn len(&self) -> usize {
+        self.manifolds.len()
+    }
+
+    /// The colliders of last step's manifold `i` (its pair, if no collider has moved in
+    /// the colliders' array since).
+    pub(crate) fn pair_at(&self, i: usize) -> Option<(u32, u32)> {
+        self.manifolds.get(i).map(|m| (m.a, m.b))
+    }
+
+    /// Whether a lookup has made the index this step.
+    #[cfg(test)]
+    pub(crate) fn has_index(&self) -> bool {
+        self.index.get().is_some()
+    }
+
     /// Forgets everything (no contacts this step).
     pub(crate) fn clear(&mut self) {
         self.keys.clear();
@@ -100,7 +117,7 @@ impl WarmStartCache {
     }
 
     /// Drops the index, keeping its map (emptied) as the spare.
-    fn forget_index(&mut self) {
+    pub(crate) fn forget_index(&mut self) {
         if let Some(mut old) = self.index.take() {
             old.clear();
             if let Ok(spare) = self.spare.get_mut() {

@@ -12,7 +12,7 @@ use bevy::prelude::*;
 use crate::geometry::{collide, collide_each, has_mesh};
 use crate::limits::MAX_MANIFOLDS_PER_STEP;
 use crate::settings::SolverSettings;
-use crate::world::{ColliderEntry, Manifold, PhysicsWorld, STATIC};
+use crate::world::{ColliderEntry, Manifold, PhysicsWorld, STATIC, WarmStartCache};
 
 mod reuse;
 #[cfg(test)]
@@ -37,12 +37,28 @@ struct Found {
     full: bool,
 }
 
+/// The narrow phase's runs but the first (which fills the world's lists), kept between
+/// steps so that their buffers are.
+#[derive(Default)]
+pub struct RunBuffers(Vec<Found>);
+
+impl Found {
+    /// Empty, its buffers kept.
+    fn clear(&mut self) {
+        self.manifolds.clear();
+        self.sensor_overlaps.clear();
+        self.wake.clear();
+        (self.reused, self.full) = (0, false);
+    }
+}
+
 /// Computes the manifolds of all candidate pairs and warm-starts them from the cache.
 pub fn collide_pairs(
     mut world: ResMut<PhysicsWorld>,
     settings: Res<SolverSettings>,
     mut capped: Local<bool>,
     mut speeds: Local<Vec<f32>>,
+    mut runs: Local<RunBuffers>,
 ) {
     let world = &mut *world;
     world.manifolds.clear();
@@ -50,52 +66,62 @@ pub fn collide_pairs(
     speeds.clear();
     speeds.extend(world.colliders.iter().map(|c| closing_speed(world, c)));
     let speeds = &*speeds;
+    // The first run fills the world's own lists (as the serial loop does), the others
+    // buffers kept between steps (not allocated and grown afresh every step).
+    let mut own = Found {
+        manifolds: std::mem::take(&mut world.manifolds),
+        sensor_overlaps: std::mem::take(&mut world.sensor_overlaps),
+        wake: std::mem::take(&mut world.wake),
+        reused: 0,
+        full: false,
+    };
     let threads = bevy::tasks::ComputeTaskPool::try_get().map_or(1, |p| p.thread_num());
-    let mut found = None;
+    let mut split = false;
+    let before = (own.sensor_overlaps.len(), own.wake.len());
     if threads >= 2 && world.pairs.len() >= PARALLEL_PAIRS_FROM {
         let shared = &*world;
-        let chunk = world.pairs.len().div_ceil(threads);
-        let runs = bevy::tasks::ComputeTaskPool::get().scope(|scope| {
-            for pairs in shared.pairs.chunks(chunk) {
-                let settings = &*settings;
-                scope.spawn(async move {
-                    let mut run = Found::default();
-                    collide_run(shared, settings, speeds, pairs, &mut run);
-                    run
-                });
+        let cuts = run_cuts(&world.pairs, &world.impulse_cache, threads);
+        let runs = &mut runs.0;
+        runs.resize_with(cuts.len(), Found::default);
+        runs.iter_mut().for_each(Found::clear);
+        let first = &world.pairs[..cuts.first().map_or(world.pairs.len(), |c| c.0)];
+        let ends = cuts.iter().map(|c| c.0).skip(1).chain([world.pairs.len()]);
+        let settings = &*settings;
+        bevy::tasks::ComputeTaskPool::get().scope(|scope| {
+            let own = &mut own;
+            scope.spawn(async move { collide_run(shared, settings, speeds, first, 0, own) });
+            for ((&(start, next), end), run) in cuts.iter().zip(ends).zip(runs.iter_mut()) {
+                let pairs = &shared.pairs[start..end];
+                scope.spawn(async move { collide_run(shared, settings, speeds, pairs, next, run) });
             }
         });
         // Past the cap the serial loop decides which pairs wait; so does this.
-        if runs.iter().map(|r| r.manifolds.len()).sum::<usize>() <= MAX_MANIFOLDS_PER_STEP {
-            found = Some(runs);
+        let found = own.manifolds.len() + runs.iter().map(|r| r.manifolds.len()).sum::<usize>();
+        split = found <= MAX_MANIFOLDS_PER_STEP;
+        if split {
+            own.reused += runs.iter().map(|r| r.reused).sum::<usize>();
+            for run in runs.iter_mut() {
+                own.manifolds.append(&mut run.manifolds);
+                own.sensor_overlaps.append(&mut run.sensor_overlaps);
+                own.wake.append(&mut run.wake);
+            }
+        } else {
+            // Back to what the world held before the runs (the joints may have woken
+            // bodies this step).
+            own.manifolds.clear();
+            own.sensor_overlaps.truncate(before.0);
+            own.wake.truncate(before.1);
+            (own.reused, own.full) = (0, false);
         }
     }
-    let full = match found {
-        Some(runs) => {
-            world.reused_manifolds = runs.iter().map(|r| r.reused).sum();
-            for run in runs {
-                world.manifolds.extend(run.manifolds);
-                world.sensor_overlaps.extend(run.sensor_overlaps);
-                world.wake.extend(run.wake);
-            }
-            false
-        }
-        None => {
-            let mut run = Found {
-                manifolds: std::mem::take(&mut world.manifolds),
-                sensor_overlaps: std::mem::take(&mut world.sensor_overlaps),
-                wake: std::mem::take(&mut world.wake),
-                reused: 0,
-                full: false,
-            };
-            collide_run(world, &settings, speeds, &world.pairs, &mut run);
-            world.reused_manifolds = run.reused;
-            world.manifolds = run.manifolds;
-            world.sensor_overlaps = run.sensor_overlaps;
-            world.wake = run.wake;
-            run.full
-        }
-    };
+    if !split {
+        collide_run(world, &settings, speeds, &world.pairs, 0, &mut own);
+    }
+    world.reused_manifolds = own.reused;
+    let full = own.full;
+    world.manifolds = own.manifolds;
+    world.sensor_overlaps = own.sensor_overlaps;
+    world.wake = own.wake;
     if full && !*capped {
         warn!(
             "tumble: more than {MAX_MANIFOLDS_PER_STEP} contact manifolds this step; the \
@@ -105,19 +131,50 @@ pub fn collide_pairs(
     *capped = full;
 }
 
-/// The narrow phase of a run of pairs, into `out`; `speeds`: each collider's
-/// [`closing_speed`], m/s.
+/// Where the runs after the first begin when `pairs` are split into `runs`: each at the
+/// pair of one of last step's manifolds, evenly spaced among them, with that manifold's
+/// place, where the run looks its first pair up (see `WarmStartCache::find`). A run that
+/// looked first at place 0 missed, and a miss makes the whole index: at two threads the
+/// ball pit made it every step, and its narrow phase took as long as on one. A cut whose
+/// pair is gone is made at the even split and looked up from 0. (The runs join to the
+/// same manifolds wherever they are cut.)
+fn run_cuts(pairs: &[(u32, u32)], cache: &WarmStartCache, runs: usize) -> Vec<(usize, usize)> {
+    let mut cuts = Vec::with_capacity(runs.saturating_sub(1));
+    let mut last = 0;
+    for k in 1..runs {
+        let place = cache.len() * k / runs;
+        let guess = (pairs.len() * k / runs).max(last + 1);
+        // Outward from the even split: this step's pairs are nearly last step's.
+        let found = cache.pair_at(place).and_then(|pair| {
+            (0..pairs.len())
+                .flat_map(|d| [guess.checked_add(d), guess.checked_sub(d)])
+                .flatten()
+                .find(|&p| p > last && p < pairs.len() && pairs[p] == pair)
+        });
+        let cut = match found {
+            Some(p) => (p, place),
+            None => (guess, 0),
+        };
+        if cut.0 >= pairs.len() {
+            break;
+        }
+        last = cut.0;
+        cuts.push(cut);
+    }
+    cuts
+}
+
+/// The narrow phase of a run of pairs, into `out`, looking the first pair up in the
+/// warm-start cache at place `next`; `speeds`: each collider's [`closing_speed`], m/s.
 fn collide_run(
     world: &PhysicsWorld,
     settings: &SolverSettings,
     speeds: &[f32],
     pairs: &[(u32, u32)],
+    mut next: usize,
     out: &mut Found,
 ) {
     let dt = world.dt;
-    // Where in last step's manifolds the next pair's is likely to be (see
-    // `WarmStartCache::find`).
-    let mut next = 0;
     for &(ia, ib) in pairs {
         if out.manifolds.len() == MAX_MANIFOLDS_PER_STEP {
             out.full = true;
@@ -293,7 +350,7 @@ mod tests {
             .map(|c| closing_speed(world, c))
             .collect();
         let mut whole = Found::default();
-        collide_run(world, settings, &speeds, &world.pairs, &mut whole);
+        collide_run(world, settings, &speeds, &world.pairs, 0, &mut whole);
         assert!(whole.manifolds.len() > 100);
         let warm = whole.manifolds.iter().flat_map(|m| m.points());
         assert!(
@@ -304,7 +361,7 @@ mod tests {
             let mut joined = Found::default();
             for pairs in world.pairs.chunks(world.pairs.len().div_ceil(runs)) {
                 let mut run = Found::default();
-                collide_run(world, settings, &speeds, pairs, &mut run);
+                collide_run(world, settings, &speeds, pairs, 0, &mut run);
                 joined.manifolds.extend(run.manifolds);
                 joined.wake.extend(run.wake);
             }
@@ -319,6 +376,59 @@ mod tests {
                 }
             }
             assert_eq!(joined.wake, whole.wake);
+        }
+    }
+
+    /// Regression: the runs after the first looked their first pair up at place 0 of
+    /// last step's manifolds, missed, and the miss made the whole pair index (a hash map
+    /// of every manifold) every step: 190 of the ball pit's 211 steps at two threads,
+    /// against 16 at one. Pairs that are last step's, in last step's order (every third
+    /// without a manifold), looked up run by run: cut where `run_cuts` cuts and from its
+    /// places, they make no index at any run count; cut evenly and from place 0, they do.
+    #[test]
+    fn runs_cut_at_last_steps_pairs_make_no_index() {
+        let pairs: Vec<(u32, u32)> = (0..3000).map(|i| (i / 7, 500 + i)).collect();
+        let touching = |k: usize| k % 3 != 0;
+        let entity = |i: u32| Entity::from_raw_u32(i).unwrap();
+        let key = |m: &Manifold| (entity(m.a), entity(m.b), m.sub);
+        let mut last: Vec<Manifold> = (pairs.iter().enumerate())
+            .filter(|&(k, _)| touching(k))
+            .map(|(_, &(a, b))| Manifold { a, b, ..default() })
+            .collect();
+        let mut cache = WarmStartCache::default();
+        cache.index(&last, key);
+        cache.take_over(&mut last);
+        // Looks each touching pair of `run` up from place `next`; whether all were found.
+        let look_up = |cache: &WarmStartCache, run: std::ops::Range<usize>, mut next| {
+            run.filter(|&k| touching(k)).all(|k| {
+                let (a, b) = pairs[k];
+                cache.find(&(entity(a), entity(b), 0), &mut next).is_some()
+            })
+        };
+        assert!(look_up(&cache, 0..pairs.len(), 0));
+        assert!(!cache.has_index(), "one run finds every pair in order");
+        for runs in [2, 3, 7] {
+            let cuts = run_cuts(&pairs, &cache, runs);
+            assert_eq!(cuts.len(), runs - 1);
+            for &(p, place) in &cuts {
+                assert_eq!(cache.pair_at(place), Some(pairs[p]), "cut at a kept pair");
+            }
+            let starts = [(0, 0)].into_iter().chain(cuts.iter().copied());
+            let ends = cuts.iter().map(|c| c.0).chain([pairs.len()]);
+            for ((start, next), end) in starts.zip(ends) {
+                assert!(look_up(&cache, start..end, next));
+            }
+            assert!(
+                !cache.has_index(),
+                "{runs} runs cut at kept pairs made the index"
+            );
+            // The old cut: even, every run looking up from place 0.
+            let even = pairs.len().div_ceil(runs);
+            for start in (0..pairs.len()).step_by(even) {
+                assert!(look_up(&cache, start..(start + even).min(pairs.len()), 0));
+            }
+            assert!(cache.has_index(), "{runs} even runs from place 0 miss");
+            cache.forget_index();
         }
     }
 }
