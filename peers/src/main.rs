@@ -13,8 +13,9 @@
 //! The scenes: the demo's spheres, tower, pyramid and rain, and the three big ones in
 //! `peers/scenes/` (a 5,050-cube flat pyramid, 100 small pyramids, a 4,096-ball pit).
 //!
-//! `cargo run --release -p tumble-peers [-- <scene filter>] [--threads N]`; with
-//! `--scaling`, the ball pit at 1k … 16k balls and each engine's fitted exponent.
+//! `cargo run --release -p tumble-peers [-- <scene filter>] [--threads N] [--stages]`;
+//! with `--scaling`, the ball pit at 1k … 16k balls and each engine's fitted exponent;
+//! with `--stages`, tumble's median time in each stage of its step too.
 
 mod avian;
 mod rapier;
@@ -27,6 +28,7 @@ use bevy::ecs::schedule::SingleThreadedExecutor;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use tumble::scene::SceneDesc;
+use tumble::timings::{STAGES, StepTimings};
 
 const ROUNDS: usize = 9;
 const STEPS: usize = 20;
@@ -61,6 +63,9 @@ pub fn start(app: &mut App) {
 /// least one pool thread; at one, avian and tumble solve serially, and the caller only
 /// waits on it.
 static THREADS: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
+
+/// `--stages`: also print tumble's median time in each stage of its step.
+static STAGE_TIMES: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
 
 /// A headless app that runs exactly one 60 Hz fixed step per update, its compute pool
 /// pinned to [`THREADS`] (the pools are global: the first app sets them for the run).
@@ -159,14 +164,23 @@ pub fn compare_scene(scene: &SceneDesc) -> [f64; 3] {
             run.app.update();
         }
     }
+    // tumble's own stage times, step by step (read outside the timed spans).
+    let mut stages = vec![vec![]; STAGES.len()];
     for _ in 0..ROUNDS {
-        for run in runs.iter_mut() {
+        for (k, run) in runs.iter_mut().enumerate() {
             let started = Instant::now();
             for _ in 0..STEPS {
                 run.app.update();
             }
             run.samples
                 .push(started.elapsed().as_secs_f64() * 1e3 / STEPS as f64);
+            if k == 0 {
+                let t = run.app.world().resource::<StepTimings>();
+                stages
+                    .iter_mut()
+                    .zip(t.stage_ms)
+                    .for_each(|(s, ms)| s.push(ms));
+            }
         }
     }
     let steps = WARM_UP + ROUNDS * STEPS + 1;
@@ -193,6 +207,15 @@ pub fn compare_scene(scene: &SceneDesc) -> [f64; 3] {
     // join in a fixed order): compare this line across `--threads`.
     let hash = tumble::state_hash::state_hash(runs[0].app.world_mut());
     println!("\ntumble's state after the run: {hash:016x}");
+    if STAGE_TIMES.get() == Some(&true) {
+        // Each round's last step, so the median of ROUNDS steps: where the threads go.
+        let line: Vec<String> = STAGES
+            .iter()
+            .zip(&mut stages)
+            .map(|(name, s)| format!("{name} {:.3}", median(s)))
+            .collect();
+        println!("tumble's stages, median ms: {}", line.join(", "));
+    }
     out
 }
 
@@ -205,6 +228,9 @@ fn main() {
         .map(|n| n.parse::<usize>().expect("--threads takes a count").max(1))
         .unwrap_or(1);
     THREADS.set(threads).expect("set once");
+    STAGE_TIMES
+        .set(args.iter().any(|a| a == "--stages"))
+        .expect("set once");
     if args.iter().any(|a| a == "--scaling") {
         scaling::run();
         return;
