@@ -5,6 +5,7 @@
 
 mod contact;
 mod continuous;
+mod crew;
 mod iterate;
 mod joint;
 mod joint_direct;
@@ -32,6 +33,7 @@ use crate::world::{
 
 pub use contact::{prepare_constraints, refresh_rows, sum_impulses};
 pub use continuous::sweep_against_fixed;
+use crew::{Crew, StopOnDrop};
 pub use iterate::{apply_restitution, stop_approach};
 #[cfg(feature = "bench-internals")]
 pub(crate) use iterate::{solve_listed, warm_start_listed};
@@ -154,33 +156,48 @@ pub fn solve_contacts(
     }
     world.last_substep = params.h;
     world.substeps = n;
-    let run = |stage, world: &mut PhysicsWorld, scratch: &mut SolverScratch| {
-        run_stage(stage, world, scratch, *integrator, &settings, &params)
+    // Declared before the closures that borrow it (used only if a pass splits).
+    let crew = Crew::new(true);
+    let run = |stage, world: &mut PhysicsWorld, scratch: &mut SolverScratch, crew| {
+        run_stage(stage, world, scratch, *integrator, &settings, &params, crew)
     };
-    run(SolverStage::PrepareContacts, world, scratch);
-    for k in 0..n {
-        for stage in [
-            SolverStage::IntegrateVelocities,
-            SolverStage::WarmStart,
-            SolverStage::Solve,
-            SolverStage::IntegratePositions,
-            SolverStage::Relax,
-        ] {
-            run(stage, world, scratch);
+    run(SolverStage::PrepareContacts, world, scratch, None);
+    let substeps = |world: &mut PhysicsWorld, scratch: &mut SolverScratch, crew| {
+        for k in 0..n {
+            for stage in [
+                SolverStage::IntegrateVelocities,
+                SolverStage::WarmStart,
+                SolverStage::Solve,
+                SolverStage::IntegratePositions,
+                SolverStage::Relax,
+            ] {
+                run(stage, world, scratch, crew);
+            }
+            // A substep's impulses are final once relaxed (the last one's after restitution).
+            if scratch.report && k + 1 < n {
+                sum_impulses(&world.constraints, &mut world.manifolds);
+            }
         }
-        // A substep's impulses are final once relaxed (the last one's after restitution).
-        if scratch.report && k + 1 < n {
-            sum_impulses(&world.constraints, &mut world.manifolds);
-        }
+    };
+    if scratch.split.contains(&true) {
+        // One helper for every split pass of the step (see `crew`).
+        bevy::tasks::ComputeTaskPool::get().scope(|scope| {
+            let crew = &crew;
+            scope.spawn(async move { crew.serve() });
+            let _stop = StopOnDrop(crew);
+            substeps(world, scratch, Some(crew));
+        });
+    } else {
+        substeps(world, scratch, None);
     }
     scratch.batches.write_back(&mut world.constraints);
     if effects.restitution {
-        run(SolverStage::Restitution, world, scratch);
+        run(SolverStage::Restitution, world, scratch, None);
     }
     if scratch.report {
         sum_impulses(&world.constraints, &mut world.manifolds);
     }
-    run(SolverStage::StoreImpulses, world, scratch);
+    run(SolverStage::StoreImpulses, world, scratch, None);
 }
 
 /// Runs one solver stage over the whole contact set.
@@ -191,6 +208,7 @@ fn run_stage(
     integrator: Integrator,
     settings: &SolverSettings,
     params: &ContactParams,
+    crew: Option<&Crew>,
 ) {
     // For profilers (trace level: free unless asked for).
     let _span = trace_span!("tumble::solve", stage = ?stage).entered();
@@ -246,7 +264,7 @@ fn run_stage(
             warm_start_joints(bodies, &world.joints);
             let (all, constraints) = (0..scratch.batches.steps.len(), &world.constraints);
             if scratch.split[0] {
-                let runner = split::Runner::Pool;
+                let runner = crew.map_or(split::Runner::Pool, split::Runner::Crew);
                 split::warm_start_steps(runner, bodies, constraints, &scratch.batches, all);
             } else {
                 warm_start_steps(bodies, constraints, &scratch.batches, all);
@@ -288,7 +306,7 @@ fn run_stage(
                         measure,
                     };
                     let work = if split {
-                        let runner = split::Runner::Pool;
+                        let runner = crew.map_or(split::Runner::Pool, split::Runner::Crew);
                         let c = &mut *constraints;
                         split::solve_steps(runner, bodies, c, batches, range, arms, pass).0
                     } else {

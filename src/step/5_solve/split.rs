@@ -4,13 +4,16 @@
 //!
 //! The calling thread leads: it walks the pass in order, does the scalar contacts and
 //! narrow levels itself, and opens each wide level in up to [`CHUNKS`] chunks. A
-//! helper task on Bevy's `ComputeTaskPool` claims chunks beside it; the leader claims too,
-//! so a helper that starts late (or never: a single-threaded pool runs it after the pass)
-//! costs only the claims. The leader moves on once every chunk of the level is done.
+//! helper on Bevy's `ComputeTaskPool` (the step's crew, see `crew.rs`, or a task of the
+//! pass's own) claims chunks beside it, from the level's back while the leader claims
+//! from its front; so a helper that starts late (or never: a single-threaded pool runs
+//! it after the pass) costs only the claims. The leader moves on once every chunk of the
+//! level is done.
 
 use std::ops::Range;
 use std::sync::atomic::{AtomicU32, AtomicU64, Ordering};
 
+use super::crew::Crew;
 use super::iterate::{solve_listed, warm_start_listed};
 use super::steps::Pass;
 use super::wide::{solve_batches, warm_start_batches};
@@ -84,7 +87,7 @@ pub(crate) fn worth_splitting(batches: &ContactBatches, steps: &Range<usize>) ->
 /// The state the leader and the helper share over one pass.
 pub(crate) struct Split<'a> {
     steps: &'a [SolveStep],
-    /// The open step (high half) and its next unclaimed chunk (low half).
+    /// The open step and its unclaimed chunks ([`word`]).
     claim: AtomicU64,
     /// Chunks of the open step finished.
     done: AtomicU32,
@@ -95,12 +98,27 @@ pub(crate) struct Split<'a> {
     leader_claims: bool,
 }
 
-fn word(step: u32, chunk: u32) -> u64 {
-    ((step as u64) << 32) | chunk as u64
+/// The claim word: the open step, and the unclaimed chunks `front..back` of it (a level
+/// has at most [`CHUNKS`]).
+fn word(step: u32, front: u32, back: u32) -> u64 {
+    debug_assert!(
+        front <= back && back <= CHUNKS as u32,
+        "chunks {front}..{back}"
+    );
+    ((step as u64) << 32) | ((back as u64) << 16) | front as u64
+}
+
+/// The step, front and back of a claim word.
+fn unpack(c: u64) -> (u32, u32, u32) {
+    (
+        (c >> 32) as u32,
+        c as u32 & 0xffff,
+        (c >> 16) as u32 & 0xffff,
+    )
 }
 
 /// Waits a little, then lets the other threads run (the machine may have no core free).
-fn snooze(spins: &mut u32) {
+pub(crate) fn snooze(spins: &mut u32) {
     if *spins < 64 {
         std::hint::spin_loop();
         *spins += 1;
@@ -114,38 +132,42 @@ impl<'a> Split<'a> {
         Self {
             leader_claims,
             steps,
-            claim: AtomicU64::new(word(IDLE, 0)),
+            claim: AtomicU64::new(word(IDLE, 0, 0)),
             done: AtomicU32::new(0),
             helped: AtomicU32::new(0),
         }
     }
 
     /// Claims and runs chunks of the open step until none is left (counting them in
-    /// `ran`); false once stopped.
+    /// `ran`); false once stopped. The leader claims from the level's front and the
+    /// helper from its back, so each thread tends to meet the same bodies and points
+    /// level after level and pass after pass (a level's contacts are in contact order).
     fn work(
         &self,
         bodies: &mut SharedBodies,
-        chunk: &impl Fn(&mut SharedBodies, Range<usize>),
+        chunk: &(impl Fn(&mut SharedBodies, Range<usize>) + ?Sized),
         ran: &mut u32,
+        from_back: bool,
     ) -> bool {
         loop {
             let c = self.claim.load(Ordering::Acquire);
-            let (step, i) = ((c >> 32) as u32, c as u32);
+            let (step, front, back) = unpack(c);
             if step == STOP {
                 return false;
             }
-            if step == IDLE {
+            if step == IDLE || front >= back {
                 return true;
             }
-            let s = &self.steps[step as usize];
-            if i >= chunks(s).unwrap_or(0) {
-                return true;
-            }
-            let next = word(step, i + 1);
+            let (i, next) = if from_back {
+                (back - 1, word(step, front, back - 1))
+            } else {
+                (front, word(step, front + 1, back))
+            };
             if (self.claim)
                 .compare_exchange_weak(c, next, Ordering::AcqRel, Ordering::Relaxed)
                 .is_ok()
             {
+                let s = &self.steps[step as usize];
                 chunk(bodies, piece(s, i));
                 *ran += 1;
                 self.done.fetch_add(1, Ordering::Release);
@@ -157,10 +179,10 @@ impl<'a> Split<'a> {
     pub(crate) fn help(
         &self,
         mut bodies: SharedBodies,
-        chunk: &impl Fn(&mut SharedBodies, Range<usize>),
+        chunk: &(impl Fn(&mut SharedBodies, Range<usize>) + ?Sized),
     ) {
         let (mut spins, mut ran) = (0, 0);
-        while self.work(&mut bodies, chunk, &mut ran) {
+        while self.work(&mut bodies, chunk, &mut ran, true) {
             snooze(&mut spins);
         }
         self.helped.store(ran, Ordering::Relaxed);
@@ -171,7 +193,7 @@ impl<'a> Split<'a> {
     pub(crate) fn lead(
         &self,
         mut bodies: SharedBodies,
-        chunk: &impl Fn(&mut SharedBodies, Range<usize>),
+        chunk: &(impl Fn(&mut SharedBodies, Range<usize>) + ?Sized),
         mut serial: impl FnMut(&mut SharedBodies, &SolveStep),
     ) {
         for (k, step) in self.steps.iter().enumerate() {
@@ -181,9 +203,9 @@ impl<'a> Split<'a> {
             };
             self.done.store(0, Ordering::Relaxed);
             // Release: the helper sees every body as the steps before left it.
-            self.claim.store(word(k as u32, 0), Ordering::Release);
+            self.claim.store(word(k as u32, 0, n), Ordering::Release);
             if self.leader_claims {
-                self.work(&mut bodies, chunk, &mut 0);
+                self.work(&mut bodies, chunk, &mut 0, false);
             }
             let mut spins = 0;
             // Acquire: and the leader sees the helper's chunks.
@@ -191,15 +213,22 @@ impl<'a> Split<'a> {
                 snooze(&mut spins);
             }
         }
-        self.claim.store(word(STOP, 0), Ordering::Release);
+        self.stop();
+    }
+
+    /// Ends the pass: the helper leaves it.
+    pub(crate) fn stop(&self) {
+        self.claim.store(word(STOP, 0, 0), Ordering::Release);
     }
 }
 
 /// Where the helper runs.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum Runner {
-    /// A task on Bevy's `ComputeTaskPool` (the step's way).
+#[derive(Clone, Copy)]
+pub(crate) enum Runner<'c> {
+    /// A task on Bevy's `ComputeTaskPool`, spawned for the pass.
     Pool,
+    /// The step's crew (the step's way: its helper is already running).
+    Crew(&'c Crew),
     /// A thread of its own, which runs every chunk (the tests': their pool has no
     /// threads).
     #[cfg(test)]
@@ -209,15 +238,22 @@ pub(crate) enum Runner {
 /// Runs `steps` with their wide levels split between this thread and a helper; returns
 /// how many chunks the helper ran.
 fn run(
-    runner: Runner,
+    runner: Runner<'_>,
     bodies: SharedBodies,
     steps: &[SolveStep],
     chunk: &(impl Fn(&mut SharedBodies, Range<usize>) + Sync),
     serial: impl FnMut(&mut SharedBodies, &SolveStep),
 ) -> u32 {
-    let split = Split::new(steps, runner == Runner::Pool);
+    let leader_claims = match runner {
+        Runner::Pool => true,
+        Runner::Crew(crew) => crew.leader_claims,
+        #[cfg(test)]
+        Runner::Thread => false,
+    };
+    let split = Split::new(steps, leader_claims);
     let split = &split;
     match runner {
+        Runner::Crew(crew) => crew.run(split, bodies, chunk, serial),
         Runner::Pool => {
             bevy::tasks::ComputeTaskPool::get().scope(|scope| {
                 scope.spawn(async move { split.help(bodies, chunk) });
@@ -235,7 +271,7 @@ fn run(
 
 /// [`warm_start_steps`](super::warm_start_steps), split.
 pub(crate) fn warm_start_steps(
-    runner: Runner,
+    runner: Runner<'_>,
     bodies: &mut [SolverBody],
     constraints: &[ContactConstraint],
     batches: &ContactBatches,
@@ -258,7 +294,7 @@ pub(crate) fn warm_start_steps(
 /// [`solve_steps`](super::solve_steps), split. Returns the work over the batches (the
 /// same as on one thread) and how many chunks the helper ran.
 pub(crate) fn solve_steps(
-    runner: Runner,
+    runner: Runner<'_>,
     bodies: &mut [SolverBody],
     constraints: &mut [ContactConstraint],
     batches: &mut ContactBatches,
