@@ -39,8 +39,12 @@ const PASS_FROM: usize = 256;
 /// two threads, the pass on one thread against split, in one interleaved run of both
 /// (`peers`, three runs): the 385-cube pyramid (6.4 batches a split level) 0.86–0.95 of
 /// the split time and the large pyramid (8.3) 0.90–0.95; the 100 pyramids (71) took
-/// 1.02–1.20 of it, and rain (45) and the ball pit (64) the same.
-const LEVEL_FROM: usize = 16;
+/// 1.02–1.20 of it, and rain (45) and the ball pit (64) the same. That was with a helper
+/// spawned per pass (16 then). With the step's crew (session 21; five interleaved
+/// comparisons at two threads), splitting the large pyramid took its solve from
+/// 26.9–28.8 ms to 25.1–26.3 (the whole step within the noise), while splitting the
+/// 385-cube pyramid's still slowed it (2.15–2.22 ms to 2.33–4.35): hence 8.
+const LEVEL_FROM: usize = 8;
 
 /// The claim word's step before the first level and after the last.
 const IDLE: u32 = u32::MAX - 1;
