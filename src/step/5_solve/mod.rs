@@ -263,8 +263,8 @@ fn run_stage(
         SolverStage::WarmStart => {
             warm_start_joints(bodies, &world.joints);
             let (all, constraints) = (0..scratch.batches.steps.len(), &world.constraints);
-            if scratch.split[0] {
-                let runner = crew.map_or(split::Runner::Pool, split::Runner::Crew);
+            if let Some(crew) = crew.filter(|_| scratch.split[0]) {
+                let runner = split::Runner::Crew(crew);
                 split::warm_start_steps(runner, bodies, constraints, &scratch.batches, all);
             } else {
                 warm_start_steps(bodies, constraints, &scratch.batches, all);
@@ -305,8 +305,8 @@ fn run_stage(
                         use_bias,
                         measure,
                     };
-                    let work = if split {
-                        let runner = crew.map_or(split::Runner::Pool, split::Runner::Crew);
+                    let work = if let Some(crew) = crew.filter(|_| split) {
+                        let runner = split::Runner::Crew(crew);
                         let c = &mut *constraints;
                         split::solve_steps(runner, bodies, c, batches, range, arms, pass).0
                     } else {

@@ -4,10 +4,9 @@
 //!
 //! The calling thread leads: it walks the pass in order, does the scalar contacts and
 //! narrow levels itself, and opens each wide level in up to [`CHUNKS`] chunks. A
-//! helper on Bevy's `ComputeTaskPool` (the step's crew, see `crew.rs`, or a task of the
-//! pass's own) claims chunks beside it, from the level's back while the leader claims
-//! from its front; so a helper that starts late (or never: a single-threaded pool runs
-//! it after the pass) costs only the claims. The leader moves on once every chunk of the
+//! helper on Bevy's `ComputeTaskPool` (the step's crew, see `crew.rs`) claims chunks
+//! beside it, from the level's back while the leader claims from its front; so a helper
+//! that starts late costs only the claims. The leader moves on once every chunk of the
 //! level is done.
 
 use std::ops::Range;
@@ -229,9 +228,8 @@ impl<'a> Split<'a> {
 /// Where the helper runs.
 #[derive(Clone, Copy)]
 pub(crate) enum Runner<'c> {
-    /// A task on Bevy's `ComputeTaskPool`, spawned for the pass.
-    Pool,
-    /// The step's crew (the step's way: its helper is already running).
+    /// The step's crew (see `crew.rs`: its helper is already running on Bevy's
+    /// `ComputeTaskPool`).
     Crew(&'c Crew),
     /// A thread of its own, which runs every chunk (the tests': their pool has no
     /// threads).
@@ -249,7 +247,6 @@ fn run(
     serial: impl FnMut(&mut SharedBodies, &SolveStep),
 ) -> u32 {
     let leader_claims = match runner {
-        Runner::Pool => true,
         Runner::Crew(crew) => crew.leader_claims,
         #[cfg(test)]
         Runner::Thread => false,
@@ -258,12 +255,6 @@ fn run(
     let split = &split;
     match runner {
         Runner::Crew(crew) => crew.run(split, bodies, chunk, serial),
-        Runner::Pool => {
-            bevy::tasks::ComputeTaskPool::get().scope(|scope| {
-                scope.spawn(async move { split.help(bodies, chunk) });
-                split.lead(bodies, chunk, serial);
-            });
-        }
         #[cfg(test)]
         Runner::Thread => std::thread::scope(|scope| {
             scope.spawn(move || split.help(bodies, chunk));
