@@ -160,6 +160,32 @@ pub fn warm_start_batches(
     points: &[PointLanes],
     friction: &[FrictionLanes],
 ) {
+    #[cfg(target_arch = "x86_64")]
+    if wide_registers() {
+        // SAFETY: the CPU has the features (checked just above).
+        return unsafe { warm_start_wide(bodies, batches, points, friction) };
+    }
+    warm_start_any(bodies, batches, points, friction)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512vl")]
+fn warm_start_wide(
+    bodies: &mut (impl BodyView + ?Sized),
+    batches: &[ContactBatch],
+    points: &[PointLanes],
+    friction: &[FrictionLanes],
+) {
+    warm_start_any(bodies, batches, points, friction)
+}
+
+#[inline(always)]
+fn warm_start_any(
+    bodies: &mut (impl BodyView + ?Sized),
+    batches: &[ContactBatch],
+    points: &[PointLanes],
+    friction: &[FrictionLanes],
+) {
     let base = batches.first().map_or(0, |b| b.first as usize);
     for (c, f) in batches.iter().zip(friction) {
         let (mut a, mut b) = (
@@ -188,6 +214,47 @@ pub fn warm_start_batches(
 /// Returns the sweeps over the batches' normal rows, all batches together (each batch
 /// sweeps at least once).
 pub fn solve_batches(
+    bodies: &mut (impl BodyView + ?Sized),
+    batches: &[ContactBatch],
+    points: &mut [PointLanes],
+    friction: &mut [FrictionLanes],
+    h: f32,
+    use_bias: bool,
+    measure: Option<&[AnchorLanes]>,
+) -> u32 {
+    #[cfg(target_arch = "x86_64")]
+    if wide_registers() {
+        // SAFETY: the CPU has the features (checked just above).
+        return unsafe { solve_wide(bodies, batches, points, friction, h, use_bias, measure) };
+    }
+    solve_any(bodies, batches, points, friction, h, use_bias, measure)
+}
+
+/// The CPU has AVX-512's 32 vector registers for 128-bit lanes: the passes are compiled
+/// twice, and on such a CPU run the copy that may use them (fewer spills; the same
+/// operations, so the same bits). Checked once a pass; the answer is cached by std.
+#[cfg(target_arch = "x86_64")]
+#[inline]
+fn wide_registers() -> bool {
+    std::is_x86_feature_detected!("avx512f") && std::is_x86_feature_detected!("avx512vl")
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512vl")]
+fn solve_wide(
+    bodies: &mut (impl BodyView + ?Sized),
+    batches: &[ContactBatch],
+    points: &mut [PointLanes],
+    friction: &mut [FrictionLanes],
+    h: f32,
+    use_bias: bool,
+    measure: Option<&[AnchorLanes]>,
+) -> u32 {
+    solve_any(bodies, batches, points, friction, h, use_bias, measure)
+}
+
+#[inline(always)]
+fn solve_any(
     bodies: &mut (impl BodyView + ?Sized),
     batches: &[ContactBatch],
     points: &mut [PointLanes],
