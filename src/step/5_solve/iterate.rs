@@ -294,8 +294,11 @@ fn solve_one<const ROLLS: bool>(
 /// Most sweeps over one manifold's normal rows in a pass.
 pub const NORMAL_SWEEPS: usize = 4;
 /// A sweep that changes no row by more than this fraction of the manifold's total normal
-/// impulse ends the sweeps (resting contacts: after the first).
-pub const NORMAL_TOL: f32 = 1e-3;
+/// impulse ends the sweeps (resting contacts: mostly after the first). At 1e-3 the large
+/// pyramid's batches swept 1.85 times a pass on average, at 1e-2 1.26, with the same
+/// largest displacement after 220 steps (0.179 and 0.178 m); at 3e-2 a flat 150 m/s box
+/// lands 0.55 mm deep, twice what `fast_bodies` allows.
+pub const NORMAL_TOL: f32 = 1e-2;
 
 /// Restitution: points that were approaching faster than `threshold` and pushed get
 /// their normal velocity driven to −e times the approach speed.
