@@ -42,8 +42,12 @@ const PASS_FROM: usize = 256;
 /// spawned per pass (16 then). With the step's crew (session 21; five interleaved
 /// comparisons at two threads), splitting the large pyramid took its solve from
 /// 26.9–28.8 ms to 25.1–26.3 (the whole step within the noise), while splitting the
-/// 385-cube pyramid's still slowed it (2.15–2.22 ms to 2.33–4.35): hence 8.
-const LEVEL_FROM: usize = 8;
+/// 385-cube pyramid's still slowed it (2.15–2.22 ms to 2.33–4.35): hence 8 there. On
+/// the Intel box of session 23 (Xeon model 207, KVM) splitting the large pyramid slowed
+/// it instead: at two threads, interleaved, its step took 37.7–40.6 ms split (from 8)
+/// against 34.4–34.6 whole (from 16), solve 28.8–30.3 against 25.5–26.0. A level of 8
+/// batches is too little work to pay for the wait on this box: hence 16.
+const LEVEL_FROM: usize = 16;
 
 /// The claim word's step before the first level and after the last.
 const IDLE: u32 = u32::MAX - 1;
