@@ -35,11 +35,32 @@ impl Polygon {
         }
     }
 
-    /// Keeps the part with n·x ≤ d. A vertex made by cutting the edge a→b gets an id built
-    /// from `tag` (which plane) and the low bits of a's and b's ids, so it stays the same
-    /// while the same edge crosses the same plane.
+    /// [`clip_into`](Self::clip_into) a new polygon.
+    #[cfg(test)]
     pub fn clip(&self, n: Vec3, d: f32, tag: u32) -> Polygon {
         let mut out = Polygon::default();
+        self.clip_into(n, d, tag, &mut out);
+        out
+    }
+
+    /// This polygon clipped by each cut (n, d, tag) in turn (see
+    /// [`clip_into`](Self::clip_into)),
+    /// between two buffers: no polygon zeroed and copied out per cut.
+    pub fn clip_all(mut self, cuts: &[(Vec3, f32, u32)]) -> Polygon {
+        let mut spare = Polygon::default();
+        let (mut src, mut dst) = (&mut self, &mut spare);
+        for &(n, d, tag) in cuts {
+            src.clip_into(n, d, tag, dst);
+            std::mem::swap(&mut src, &mut dst);
+        }
+        *src
+    }
+
+    /// Keeps the part with n·x ≤ d, in `out` (its vertices replaced). A vertex made by
+    /// cutting the edge a→b gets an id built from `tag` (which plane) and the low bits of
+    /// a's and b's ids, so it stays the same while the same edge crosses the same plane.
+    fn clip_into(&self, n: Vec3, d: f32, tag: u32, out: &mut Polygon) {
+        out.len = 0;
         for i in 0..self.len {
             let j = (i + 1) % self.len;
             let (a, b) = (self.v[i], self.v[j]);
@@ -53,7 +74,6 @@ impl Polygon {
                 out.push(a + (b - a) * t, id);
             }
         }
-        out
     }
 }
 
