@@ -87,14 +87,12 @@ fn face_contact(
     let n = along * sign;
     let ref_face = 2 * axis + usize::from(sign < 0.0);
     let inc_face = most_anti_parallel_face(incident, n);
-    let mut cuts = [(Vec3::ZERO, 0.0, 0); 4];
-    for (tag, k) in [(axis + 1) % 3, (axis + 2) % 3].into_iter().enumerate() {
+    let slab = |k: usize| {
         let side = reference.axes.col(k);
-        let c = side.dot(reference.pos);
-        cuts[2 * tag] = (side, c + reference.half[k], 2 * tag as u32);
-        cuts[2 * tag + 1] = (-side, -c + reference.half[k], 2 * tag as u32 + 1);
-    }
-    let poly = box_face(incident.pos, incident.axes, incident.half, inc_face).clip_all(&cuts);
+        (side, side.dot(reference.pos), reference.half[k])
+    };
+    let poly = box_face(incident.pos, incident.axes, incident.half, inc_face)
+        .clip_to_slabs([slab((axis + 1) % 3), slab((axis + 2) % 3)]);
     let plane = n.dot(reference.pos) + reference.half[axis];
     let base = (u32::from(flipped) << 28) | ((ref_face as u32) << 24) | ((inc_face as u32) << 20);
     push_face_points(&poly, n, plane, margin, base, out);

@@ -29,13 +29,8 @@ pub fn collide(
     let face = most_anti_parallel_face(&b, n);
     let mut poly = box_face(b.pos, b.axes, h, face);
     if let Some(r) = half {
-        let mut cuts = [(Vec3::ZERO, 0.0, 0); 4];
-        for (tag, (axis, extent)) in [(pr.col(0), r.x), (pr.col(2), r.y)].into_iter().enumerate() {
-            let c = axis.dot(plane.pos);
-            cuts[2 * tag] = (axis, c + extent, 2 * tag as u32);
-            cuts[2 * tag + 1] = (-axis, -c + extent, 2 * tag as u32 + 1);
-        }
-        poly = poly.clip_all(&cuts);
+        let slab = |axis: Vec3, extent: f32| (axis, axis.dot(plane.pos), extent);
+        poly = poly.clip_to_slabs([slab(pr.col(0), r.x), slab(pr.col(2), r.y)]);
     }
     // The plane is the reference face: a vertex's separation is its height along n.
     let before = out.len;

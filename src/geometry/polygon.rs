@@ -43,13 +43,19 @@ impl Polygon {
         out
     }
 
-    /// This polygon clipped by each cut (n, d, tag) in turn (see
-    /// [`clip_into`](Self::clip_into)),
-    /// between two buffers: no polygon zeroed and copied out per cut.
-    pub fn clip_all(mut self, cuts: &[(Vec3, f32, u32)]) -> Polygon {
+    /// This polygon kept inside two slabs, each side's (axis, centre offset c = axis·centre,
+    /// half width): clipped by the planes axis·x ≤ c + w and −axis·x ≤ −c + w, tagged
+    /// 2k and 2k + 1 for slab k, between two buffers (no polygon zeroed and copied out per
+    /// cut; see [`clip_into`](Self::clip_into)).
+    pub fn clip_to_slabs(mut self, slabs: [(Vec3, f32, f32); 2]) -> Polygon {
+        let mut cuts = [(Vec3::ZERO, 0.0, 0); 4];
+        for (k, (axis, c, w)) in slabs.into_iter().enumerate() {
+            cuts[2 * k] = (axis, c + w, 2 * k as u32);
+            cuts[2 * k + 1] = (-axis, -c + w, 2 * k as u32 + 1);
+        }
         let mut spare = Polygon::default();
         let (mut src, mut dst) = (&mut self, &mut spare);
-        for &(n, d, tag) in cuts {
+        for (n, d, tag) in cuts {
             src.clip_into(n, d, tag, dst);
             std::mem::swap(&mut src, &mut dst);
         }
