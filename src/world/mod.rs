@@ -305,6 +305,8 @@ pub struct PhysicsWorld {
     pub(crate) substeps: u32,
     /// Solve and relax passes per substep in the last step.
     pub(crate) iterations: u32,
+    /// Relax passes per substep in the last step.
+    pub(crate) relax_iterations: u32,
     /// The contact passes' work over the batches in the last step, all passes together.
     pub(crate) solve_work: SolveWork,
     /// Of the last step's manifolds, those moved from the step before instead of found
@@ -327,10 +329,17 @@ impl PhysicsWorld {
         self.substeps
     }
 
-    /// Solve (and relax) passes per substep in the last step: the setting, or more when
+    /// Solve passes per substep in the last step: the setting, or more when
     /// heavy loads on light bodies asked for them (see `SolverSettings::iterations`).
     pub fn iterations(&self) -> u32 {
         self.iterations
+    }
+
+    /// Relax passes per substep in the last step: the setting, or more when a pair's
+    /// mass ratio, or a bouncing contact's load, asked for them (the solve passes follow
+    /// every contact's load).
+    pub fn relax_iterations(&self) -> u32 {
+        self.relax_iterations
     }
 
     /// Sweeps over a batch's normal rows per batch and pass in the last step: 1 when

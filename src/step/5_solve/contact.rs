@@ -140,7 +140,9 @@ fn count_overlaps(
 }
 
 /// Builds the constraint of every manifold. Returns the largest load ratio r of any
-/// contact (see [`contact_softness`]), which sets how many iterations the step needs.
+/// contact (see [`contact_softness`]), which sets how many solve passes the step needs,
+/// and the ratio that sets its relax passes: the largest mass ratio of any pair of moving
+/// bodies (heavier over lighter), or the load ratio of a contact that bounces.
 pub fn prepare_constraints(
     manifolds: &[Manifold],
     colliders: &[ColliderEntry],
@@ -151,7 +153,7 @@ pub fn prepare_constraints(
     heaviest: &mut Vec<f32>,
     out: &mut Vec<ContactConstraint>,
     arms: &mut Vec<RollingArms>,
-) -> f32 {
+) -> (f32, f32) {
     out.clear();
     arms.clear();
     count_overlaps(manifolds, colliders, states.len(), overlaps);
@@ -174,7 +176,7 @@ pub fn prepare_constraints(
         }
     };
     let anisotropic = |i: u32| i != STATIC && !is_isotropic(states[i as usize].inv_inertia);
-    let mut max_ratio = 1.0f32;
+    let (mut max_ratio, mut max_relax_ratio) = (1.0f32, 1.0f32);
     for (mi, m) in manifolds.iter().enumerate() {
         let (ca, cb) = (&colliders[m.a as usize], &colliders[m.b as usize]);
         let centre = |c: &ColliderEntry| {
@@ -207,6 +209,12 @@ pub fn prepare_constraints(
         let (softness, r) =
             contact_softness(&stiffness, sa.inv_mass, sb.inv_mass, load, weight, size);
         max_ratio = max_ratio.max(r);
+        if m.restitution > 0.0 {
+            max_relax_ratio = max_relax_ratio.max(r);
+        } else if sa.inv_mass > 0.0 && sb.inv_mass > 0.0 {
+            let (lo, hi) = (sa.inv_mass.min(sb.inv_mass), sa.inv_mass.max(sb.inv_mass));
+            max_relax_ratio = max_relax_ratio.max(hi / lo);
+        }
         let arm = [
             sphere_arm(ca, spin[0], centre(ca)),
             sphere_arm(cb, spin[1], centre(cb)),
@@ -281,7 +289,7 @@ pub fn prepare_constraints(
             c.anchor.twist_impulse = m.points().iter().map(|p| p.twist_impulse).sum();
         }
     }
-    max_ratio
+    (max_ratio, max_relax_ratio)
 }
 
 /// Re-derives the inverse-inertia images of the rows and the point masses of constraints
