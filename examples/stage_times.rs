@@ -43,6 +43,7 @@ fn main() {
     let (mut total, mut counts) = (Vec::new(), (0, 0, 0, 0));
     let mut sweeps = Vec::with_capacity(timed);
     let mut reused = 0;
+    let mut passes = (0u64, 0u64);
     for _ in 0..timed {
         app.update();
         let t = app.world().resource::<StepTimings>();
@@ -53,6 +54,8 @@ fn main() {
         let w = app.world().resource::<PhysicsWorld>();
         sweeps.push(f64::from(w.normal_sweeps_per_batch()));
         reused += w.reused_manifolds();
+        passes.0 += u64::from(w.iterations());
+        passes.1 += u64::from(w.relax_iterations());
         counts = (
             counts.0.max(w.substeps()),
             counts.1.max(w.iterations()),
@@ -63,6 +66,12 @@ fn main() {
     let (substeps, iterations, manifolds, points) = counts;
     println!("{file}: {timed} steps after {warm}");
     println!("  substeps {substeps}, passes {iterations}, manifolds {manifolds}, points {points}");
+    let per_step = |n: u64| n as f64 / timed.max(1) as f64;
+    println!(
+        "  passes a substep (mean): solve {:.2}, relax {:.2}",
+        per_step(passes.0),
+        per_step(passes.1)
+    );
     // Work, not time: the same on any machine, however busy.
     let mean_sweeps = sweeps.iter().sum::<f64>() / sweeps.len().max(1) as f64;
     println!("  normal sweeps per batch and pass {mean_sweeps:.3} (mean over the timed steps)");
