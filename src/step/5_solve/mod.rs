@@ -27,8 +27,7 @@ use crate::effects::Effects;
 use crate::math::{FreeStep, Inertial, Softness, free_substep, rotate};
 use crate::settings::{Gravity, Integrator, SolverSettings};
 use crate::world::{
-    ContactBatches, ContactConstraint, ContactParams, PhysicsWorld, STATIC, SolveWork,
-    is_isotropic, world_inv_inertia,
+    ContactBatches, ContactParams, PhysicsWorld, STATIC, SolveWork, is_isotropic, world_inv_inertia,
 };
 
 pub use contact::{prepare_constraints, refresh_rows, sum_impulses};
@@ -75,6 +74,8 @@ pub struct SolverScratch {
     refresh: bool,
     /// Some constraint reports its impulses (a collider with collision events).
     report: bool,
+    /// Some constraint bounces (restitution above zero).
+    bounce: bool,
     /// This step's contacts packed into batches solved side by side.
     batches: ContactBatches,
     /// The batches' separations were measured since the bodies last moved (see
@@ -221,10 +222,9 @@ fn run_stage(
             let (m, c, s) = (&world.manifolds, &world.colliders, &world.bodies);
             let (out, overlaps) = (&mut world.constraints, &mut scratch.overlaps);
             let (heaviest, arms) = (&mut scratch.heaviest, &mut world.rolling_arms);
-            let (ratio, relax_ratio) =
+            let found =
                 prepare_constraints(m, c, s, bodies, stiffness, overlaps, heaviest, out, arms);
-            let fixed = |c: &&ContactConstraint| c.a == STATIC || c.b == STATIC;
-            scratch.fixed_constraints = world.constraints.iter().take_while(fixed).count();
+            scratch.fixed_constraints = found.fixed;
             debug_assert!(
                 world.constraints[scratch.fixed_constraints..]
                     .iter()
@@ -236,7 +236,7 @@ fn run_stage(
                 j.softness = Softness::new(wanted.min(stiffness.max_hertz), JOINT_DAMPING_RATIO, h);
                 j.held = Softness::new(wanted.min(HELD_MAX_RATE / h), JOINT_DAMPING_RATIO, h);
             }
-            world.iterations = iterations_for(settings.iterations, ratio);
+            world.iterations = iterations_for(settings.iterations, found.ratio);
             // The relax passes follow the pairs' mass ratios, not the load a stack
             // carries: a relax pass takes out the velocity the solve passes' push-out
             // left, and through a stack of equal bodies one pass does that however much
@@ -248,9 +248,9 @@ fn run_stage(
             // pyramid (2 solve passes, 1 relax; three interleaved runs): solve 24.5-26.5
             // -> 21.9-22.5 ms a step, the largest displacement after 220 steps 0.178 ->
             // 0.189 m.
-            world.relax_iterations = iterations_for(settings.iterations, relax_ratio);
-            scratch.refresh = world.constraints.iter().any(|c| c.refresh);
-            scratch.report = world.constraints.iter().any(|c| c.report);
+            world.relax_iterations = iterations_for(settings.iterations, found.relax_ratio);
+            (scratch.refresh, scratch.report) = (found.refresh, found.report);
+            scratch.bounce = found.bounce;
             let fixed = scratch.fixed_constraints;
             scratch.batches.build(&world.constraints, bodies, fixed);
             scratch.measured = false;
@@ -356,11 +356,11 @@ fn run_stage(
             }
         }
         SolverStage::Restitution => {
-            apply_restitution(
-                bodies,
-                &mut world.constraints,
-                settings.restitution_threshold,
-            );
+            // (Not even a scan over the constraints when none bounces.)
+            if scratch.bounce {
+                let threshold = settings.restitution_threshold;
+                apply_restitution(bodies, &mut world.constraints, threshold);
+            }
             // A bounce between two bodies can send one into a wall it is touching; the
             // world has the last word here too.
             let fixed = scratch.fixed_constraints;
