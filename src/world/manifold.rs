@@ -48,6 +48,11 @@ pub(crate) struct Manifold {
     /// Which part of the pair this is: 0, or for a pair with a triangle mesh or
     /// heightfield the touching triangle's index (a pair can have one per triangle).
     pub sub: u32,
+    /// The points' normal impulses summed the step before the one they warm-start from
+    /// (two steps back when prepared; 0 for a pair that is new since), N·s a substep:
+    /// with last step's sum, what tells a load that stays from an impact's impulse,
+    /// which lasts a step (see the solver's `SQUEEZE_RATIO`).
+    pub previous_load: f32,
     /// Combined material of the pair.
     pub friction: f32,
     pub restitution: f32,

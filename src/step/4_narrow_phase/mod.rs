@@ -276,6 +276,7 @@ fn collide_run(
 /// can change its feature id when the reference face flips between the two boxes, and
 /// losing a heavy body's warm start makes it sink and bounce).
 fn warm_start_from(m: &mut Manifold, cached: &Manifold, reach: f32) {
+    m.previous_load = cached.previous_load;
     for p in m.points_mut() {
         let same_id = cached.points().iter().find(|c| c.id == p.id);
         let nearest = || {

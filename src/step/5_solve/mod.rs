@@ -139,6 +139,7 @@ pub fn solve_contacts(
     if world.last_substep > 0.0 && world.last_substep != params.h {
         let scale = params.h / world.last_substep;
         for m in world.manifolds.iter_mut() {
+            m.previous_load *= scale;
             for p in m.points_mut() {
                 p.normal_impulse *= scale;
                 p.tangent_impulse *= scale;
@@ -479,6 +480,8 @@ fn collect_active_bodies(world: &mut PhysicsWorld, active: &mut Vec<u32>) {
 fn store_impulses(world: &mut PhysicsWorld) {
     for c in &world.constraints {
         let m = &mut world.manifolds[c.manifold as usize];
+        // What this step warm-started from, last step's load, is the previous one now.
+        m.previous_load = m.points().iter().map(|p| p.normal_impulse).sum();
         let shares = contact::friction_shares(c);
         for ((mp, cp), share) in m.points_mut().iter_mut().zip(&c.points).zip(shares) {
             mp.normal_impulse = cp.normal_impulse;

@@ -97,7 +97,7 @@ fn pair_masses(lo: f32, hi: f32) -> (f32, f32) {
 
 /// The load ratio r: the heavier of the pair's other mass and the mass that `impulse` (per
 /// substep of `p.h`) holds up, over the lighter mass; at least 1.
-fn load_ratio(p: &ContactParams, lo: f32, hi: f32, impulse: f32) -> f32 {
+pub(super) fn load_ratio(p: &ContactParams, lo: f32, hi: f32, impulse: f32) -> f32 {
     let (light, heavy) = pair_masses(lo, hi);
     let carried = if p.gravity > 0.0 {
         impulse / (p.gravity * p.h)
