@@ -303,7 +303,7 @@ pub struct PhysicsWorld {
     /// Substeps the contact solver took last step (the setting, or more for stiff
     /// contacts).
     pub(crate) substeps: u32,
-    /// Solve and relax passes per substep in the last step.
+    /// Solve passes per substep in the last step.
     pub(crate) iterations: u32,
     /// Relax passes per substep in the last step.
     pub(crate) relax_iterations: u32,
