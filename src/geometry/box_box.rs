@@ -21,13 +21,22 @@ const EDGE_TOLERANCE: f32 = 0.005;
 pub fn collide(a: Posed, ha: Vec3, b: Posed, hb: Vec3, margin: f32, out: &mut Manifold) {
     let (ba, bb) = (BoxFrame::new(&a, ha), BoxFrame::new(&b, hb));
     let d = bb.pos - ba.pos;
-    let separation = |axis: Vec3| d.dot(axis).abs() - ba.radius_along(axis) - bb.radius_along(axis);
+    // Everything in A's frame: r[i][j] = aᵢ·bⱼ (column j is bⱼ there), and the centres'
+    // offset in each frame. Each box's radius along any of the 15 axes is then a few
+    // products of these, with no vector turned per axis.
+    let at = ba.axes.transpose();
+    let r = at * bb.axes;
+    let rows = [r.row(0), r.row(1), r.row(2)];
+    let cols = [r.col(0), r.col(1), r.col(2)];
+    let (ta, tb) = (at * d, bb.axes.transpose() * d);
+    let (abs_rows, abs_cols) = (rows.map(Vec3::abs), cols.map(Vec3::abs));
 
     let mut face_a = (f32::MIN, 0);
     let mut face_b = (f32::MIN, 0);
     for k in 0..3 {
-        let sa = separation(ba.axes.col(k));
-        let sb = separation(bb.axes.col(k));
+        // Along aₖ: B's radius is Σⱼ |aₖ·bⱼ| hbⱼ; along bₖ, A's is Σᵢ |aᵢ·bₖ| haᵢ.
+        let sa = ta[k].abs() - ha[k] - abs_rows[k].dot(hb);
+        let sb = tb[k].abs() - abs_cols[k].dot(ha) - hb[k];
         if sa > margin || sb > margin {
             return;
         }
@@ -40,19 +49,27 @@ pub fn collide(a: Posed, ha: Vec3, b: Posed, hb: Vec3, margin: f32, out: &mut Ma
     }
     let mut edge = (f32::MIN, 0, 0, Vec3::ZERO);
     for i in 0..3 {
+        let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
         for j in 0..3 {
-            let axis = ba.axes.col(i).cross(bb.axes.col(j));
+            let (j1, j2) = ((j + 1) % 3, (j + 2) % 3);
+            // aᵢ × bⱼ in A's frame: eᵢ × (column j) = (.., −r[i2][j], r[i1][j]).
+            let mut axis = Vec3::ZERO;
+            (axis[i1], axis[i2]) = (-r.col(j)[i2], r.col(j)[i1]);
             let len = axis.length();
             if len < 1e-5 {
                 continue; // parallel edges: their face axes already cover this direction
             }
-            let axis = axis / len;
-            let s = separation(axis);
+            // A's radius along it: ha_i1 |r[i2][j]| + ha_i2 |r[i1][j]|; B's, since
+            // b_j1 · (aᵢ × bⱼ) = aᵢ · b_j2 and b_j2 · (aᵢ × bⱼ) = −aᵢ · b_j1:
+            // hb_j1 |r[i][j2]| + hb_j2 |r[i][j1]|.
+            let radius_a = ha[i1] * abs_cols[j][i2] + ha[i2] * abs_cols[j][i1];
+            let radius_b = hb[j1] * abs_rows[i][j2] + hb[j2] * abs_rows[i][j1];
+            let s = (ta.dot(axis).abs() - radius_a - radius_b) / len;
             if s > margin {
                 return;
             }
             if s > edge.0 {
-                edge = (s, i, j, axis);
+                edge = (s, i, j, axis / len);
             }
         }
     }
@@ -60,7 +77,9 @@ pub fn collide(a: Posed, ha: Vec3, b: Posed, hb: Vec3, margin: f32, out: &mut Ma
     let b_face_wins = face_b.0 > face_a.0 + FACE_TOLERANCE;
     let face_sep = face_a.0.max(face_b.0);
     if edge.0 > face_sep + EDGE_TOLERANCE {
-        edge_contact(&ba, &bb, edge.1, edge.2, edge.3, margin, out);
+        // The edge axis back in the world frame.
+        let axis = ba.axes * edge.3;
+        edge_contact(&ba, &bb, edge.1, edge.2, axis, margin, out);
     } else if b_face_wins {
         face_contact(&bb, &ba, face_b.1, true, margin, out);
     } else {
@@ -263,5 +282,110 @@ mod tests {
             0.02,
         );
         assert!((m.normal + Vec3::Y).length() < 1e-6);
+    }
+
+    /// Half the box's extent along a unit axis, in the world frame.
+    fn radius_along(b: &BoxFrame, axis: Vec3) -> f32 {
+        (0..3)
+            .map(|k| b.axes.col(k).dot(axis).abs() * b.half[k])
+            .sum()
+    }
+
+    /// The brute-force reference for `collide`'s axis choice: every axis's separation
+    /// measured in the world frame, each box's radius along it summed over its axes.
+    fn reference(a: Posed, ha: Vec3, b: Posed, hb: Vec3, margin: f32, out: &mut Manifold) {
+        let (ba, bb) = (BoxFrame::new(&a, ha), BoxFrame::new(&b, hb));
+        let d = bb.pos - ba.pos;
+        let sep =
+            |axis: Vec3| d.dot(axis).abs() - radius_along(&ba, axis) - radius_along(&bb, axis);
+        let (mut face_a, mut face_b) = ((f32::MIN, 0), (f32::MIN, 0));
+        for k in 0..3 {
+            let (sa, sb) = (sep(ba.axes.col(k)), sep(bb.axes.col(k)));
+            if sa > margin || sb > margin {
+                return;
+            }
+            face_a = if sa > face_a.0 { (sa, k) } else { face_a };
+            face_b = if sb > face_b.0 { (sb, k) } else { face_b };
+        }
+        let mut edge = (f32::MIN, 0, 0, Vec3::ZERO);
+        for i in 0..3 {
+            for j in 0..3 {
+                let axis = ba.axes.col(i).cross(bb.axes.col(j));
+                if axis.length() < 1e-5 {
+                    continue;
+                }
+                let axis = axis.normalize();
+                let s = sep(axis);
+                if s > margin {
+                    return;
+                }
+                edge = if s > edge.0 { (s, i, j, axis) } else { edge };
+            }
+        }
+        let face_sep = face_a.0.max(face_b.0);
+        if edge.0 > face_sep + EDGE_TOLERANCE {
+            edge_contact(&ba, &bb, edge.1, edge.2, edge.3, margin, out);
+        } else if face_b.0 > face_a.0 + FACE_TOLERANCE {
+            face_contact(&bb, &ba, face_b.1, true, margin, out);
+        } else {
+            face_contact(&ba, &bb, face_a.1, false, margin, out);
+        }
+    }
+
+    #[test]
+    fn axes_in_a_frame_find_what_the_world_frame_reference_finds() {
+        let mut r = crate::rng::Rnd(0xb0c5_0015);
+        let s = Shape::Cuboid {
+            half_extents: Vec3::ONE,
+        };
+        let (mut touching, mut edges) = (0, 0);
+        for case in 0..4000 {
+            let (ha, hb) = (r.vec(0.05, 1.0), r.vec(0.05, 1.0));
+            // Axis-aligned or turned: resting boxes share axes (their parallel edges are
+            // the skipped ones).
+            let turn = |r: &mut crate::rng::Rnd| {
+                if r.unit() < 0.3 {
+                    Quat::IDENTITY
+                } else {
+                    r.rot()
+                }
+            };
+            let (qa, qb) = (turn(&mut r), turn(&mut r));
+            let reach = ha.length() + hb.length();
+            let pa = r.vec(-5.0, 5.0);
+            let pb = pa + r.dir() * r.range(0.0, reach);
+            let posed = |pos, rot| Posed {
+                shape: &s,
+                pos,
+                rot,
+            };
+            let margin = 0.02;
+            let (mut m, mut want) = (Manifold::default(), Manifold::default());
+            collide(posed(pa, qa), ha, posed(pb, qb), hb, margin, &mut m);
+            reference(posed(pa, qa), ha, posed(pb, qb), hb, margin, &mut want);
+            assert_eq!(m.len, want.len, "case {case}: {m:?} against {want:?}");
+            if m.len == 0 {
+                continue;
+            }
+            touching += 1;
+            edges += usize::from(m.points[0].id & 0x4000_0000 != 0);
+            assert!(
+                (m.normal - want.normal).length() < 1e-4,
+                "case {case}: {m:?} against {want:?}"
+            );
+            for (p, q) in m.points().iter().zip(want.points()) {
+                assert_eq!(p.id, q.id, "case {case}");
+                assert!(
+                    (p.point - q.point).length() < 1e-4,
+                    "case {case}: {p:?} against {q:?}"
+                );
+                assert!((p.separation - q.separation).abs() < 1e-4, "case {case}");
+            }
+        }
+        // The test means something only if both kinds of contact are common.
+        assert!(
+            touching > 1000 && edges > 100,
+            "{touching} touching, {edges} on edges"
+        );
     }
 }

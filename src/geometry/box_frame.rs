@@ -24,14 +24,6 @@ impl BoxFrame {
             half,
         }
     }
-
-    /// Half the box's extent along a unit axis.
-    #[inline]
-    pub fn radius_along(&self, axis: Vec3) -> f32 {
-        (0..3)
-            .map(|k| self.axes.col(k).dot(axis).abs() * self.half[k])
-            .sum()
-    }
 }
 
 /// The face of `b` whose outward normal points most against `n`.
