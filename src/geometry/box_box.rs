@@ -54,7 +54,7 @@ pub fn collide(a: Posed, ha: Vec3, b: Posed, hb: Vec3, margin: f32, out: &mut Ma
             let (j1, j2) = ((j + 1) % 3, (j + 2) % 3);
             // aᵢ × bⱼ in A's frame: eᵢ × (column j) = (.., −r[i2][j], r[i1][j]).
             let mut axis = Vec3::ZERO;
-            (axis[i1], axis[i2]) = (-r.col(j)[i2], r.col(j)[i1]);
+            (axis[i1], axis[i2]) = (-cols[j][i2], cols[j][i1]);
             let len = axis.length();
             if len < 1e-5 {
                 continue; // parallel edges: their face axes already cover this direction

@@ -11,7 +11,7 @@ use bevy::prelude::*;
 /// J = I + (h/2)·(skew(ω_m)·I − skew(I·ω_m)).
 pub fn solve_gyroscopic_midpoint(inertia: Vec3, w1: Vec3, torque: Vec3, h: f32) -> Vec3 {
     // Isotropic inertia (a sphere): ω_m × I·ω_m = 0, and the solve is exact in one line.
-    if inertia.x == inertia.y && inertia.y == inertia.z {
+    if is_isotropic_moments(inertia) {
         return w1 + h * torque / inertia.x;
     }
     let i = Mat3::from_diagonal(inertia);
@@ -28,6 +28,13 @@ pub fn solve_gyroscopic_midpoint(inertia: Vec3, w1: Vec3, torque: Vec3, h: f32) 
         w2 -= j.inverse() * f;
     }
     w2
+}
+
+/// Whether principal moments are all equal (a sphere, a cube): then ω × Iω = 0 and every
+/// frame is a principal one.
+#[inline]
+pub fn is_isotropic_moments(inertia: Vec3) -> bool {
+    inertia.x == inertia.y && inertia.y == inertia.z
 }
 
 /// The cross-product matrix: skew(a)·b = a × b.

@@ -25,7 +25,7 @@ use crate::world::{BodyState, ForceModel};
 
 pub use ballistic::ballistic;
 pub use frames::to_parent_frame;
-pub use gyroscopic::solve_gyroscopic_midpoint;
+pub use gyroscopic::{is_isotropic_moments, solve_gyroscopic_midpoint};
 pub use principal::{part_tensor, principal_axes};
 pub use softness::Softness;
 

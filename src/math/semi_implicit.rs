@@ -5,7 +5,7 @@
 
 use bevy::prelude::*;
 
-use super::{Inertial, rotate, solve_gyroscopic_midpoint};
+use super::{Inertial, is_isotropic_moments, rotate, solve_gyroscopic_midpoint};
 use crate::world::ForceModel;
 
 #[inline]
@@ -26,7 +26,7 @@ pub fn linear(f: &ForceModel, v: Vec3, h: f32) -> (Vec3, Vec3) {
 /// +1.9e-3 at 16 substeps, +7.1e-3 at 64, on the tumbling box over 10 s).
 pub fn angular_substeps(body: &Inertial, q: Quat, w: Vec3, h: f32, n: u32) -> (Quat, Vec3) {
     let f = body.forces;
-    if isotropic(body.inertia) {
+    if is_isotropic_moments(body.inertia) {
         let (mut q, mut w) = (q, w);
         for _ in 0..n {
             w = isotropic_spin(f, body.inertia.x, w, h);
@@ -46,7 +46,7 @@ pub fn angular_substeps(body: &Inertial, q: Quat, w: Vec3, h: f32, n: u32) -> (Q
 /// One substep of the angular motion: orientation and world spin at its end.
 pub fn angular(body: &Inertial, q: Quat, w: Vec3, h: f32) -> (Quat, Vec3) {
     let f = body.forces;
-    if isotropic(body.inertia) {
+    if is_isotropic_moments(body.inertia) {
         let w = isotropic_spin(f, body.inertia.x, w, h);
         return (rotate(q, w, h), w);
     }
@@ -57,17 +57,11 @@ pub fn angular(body: &Inertial, q: Quat, w: Vec3, h: f32) -> (Quat, Vec3) {
     (rotate(q, w, h), w)
 }
 
-/// Whether the principal moments are all equal (a sphere, a cube): then ω × Iω = 0 and
-/// every frame is a principal one, so the spin is stepped in the world frame, with no
-/// turns into the body frame and back (four quaternion turns a substep; they were 11 %
-/// of the rain's step, whose 2,000 bodies are all balls and cubes).
-#[inline]
-fn isotropic(inertia: Vec3) -> bool {
-    inertia.x == inertia.y && inertia.y == inertia.z
-}
-
 /// One substep of an isotropic body's world spin under its torque and drag (`inertia`:
-/// its moment, kg·m²): what the midpoint solve gives for it, exactly.
+/// its moment, kg·m²): what the midpoint solve gives for it, exactly. Stepped in the world
+/// frame, with none of the turns into the body frame and back (two or three quaternion
+/// turns a substep; with the midpoint solve they were 11 % of the rain's step, whose
+/// 2,000 bodies are all balls and cubes).
 #[inline]
 fn isotropic_spin(f: &ForceModel, inertia: f32, w: Vec3, h: f32) -> Vec3 {
     let w = if f.torque == Vec3::ZERO {
