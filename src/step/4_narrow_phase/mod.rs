@@ -228,14 +228,19 @@ fn collide_run(
             (entity(m.a), entity(m.b), m.sub)
         };
         let manifolds = &mut out.manifolds;
-        let mut found = false;
-        // `warm`: last step's manifold of the pair, whose impulses this one starts from.
-        let mut take = |mut m: Manifold, warm: Option<&Manifold>| {
-            found = true;
+        // Whether the pair has a manifold (a cell: `take` sets it, and so does reuse).
+        let found = std::cell::Cell::new(false);
+        // The pair's material.
+        let combine = |m: &mut Manifold| {
             let (fa, ra) = a.filter.combine;
             let (fb, rb) = b.filter.combine;
             m.friction = fa.pair(fb).apply(a.friction, b.friction).max(0.0);
             m.restitution = ra.pair(rb).apply(a.restitution, b.restitution);
+        };
+        // `warm`: last step's manifold of the pair, whose impulses this one starts from.
+        let take = |mut m: Manifold, warm: Option<&Manifold>, manifolds: &mut Vec<_>| {
+            found.set(true);
+            combine(&mut m);
             if let Some(cached) = warm {
                 warm_start_from(&mut m, cached, margin);
             }
@@ -249,23 +254,29 @@ fn collide_run(
         if has_mesh(&a.shape, &b.shape) {
             collide_each(a, ia, b, ib, cutoff, &mut |m| {
                 let warm = cache.find(&key(&m), &mut next);
-                take(m, warm);
+                take(m, warm, manifolds);
             });
         } else if reuse::reusable(a, b) {
             let cached = cache.find(&(a.entity, b.entity, 0), &mut next);
-            let moved = cached.and_then(|c| reuse::reuse(c, (a, ia), (b, ib), margin, cutoff));
-            if let Some(m) = moved {
+            // (The loop's first check leaves room for one more manifold.)
+            let limits = (margin, cutoff);
+            let moved =
+                cached.is_some_and(|c| reuse::reuse_onto(manifolds, c, (a, ia), (b, ib), limits));
+            if moved {
                 out.reused += 1;
-                take(m, None);
+                found.set(true);
+                combine(manifolds.last_mut().expect("just pushed"));
             } else if let Some(mut m) = collide(a, ia, b, ib, cutoff) {
                 reuse::anchor(&mut m, a, b, cutoff);
-                take(m, cached);
+                take(m, cached, manifolds);
             }
         } else if let Some(m) = collide(a, ia, b, ib, cutoff) {
             let warm = cache.find(&key(&m), &mut next);
-            take(m, warm);
+            take(m, warm, manifolds);
         }
-        if found && let Some(e) = wake {
+        if found.get()
+            && let Some(e) = wake
+        {
             out.wake.push(e);
         }
     }
