@@ -16,8 +16,11 @@ const PASSES: usize = 10;
 
 fn main() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    println!("| scene | contacts | scalar pass µs | batched pass µs | × scalar | packing µs |");
-    println!("|---|---:|---:|---:|---:|---:|");
+    println!(
+        "| scene | contacts | scalar pass µs | batched pass µs | × scalar | packing µs \
+         | batches | lanes filled | scalar contacts | levels |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for file in [
         "assets/scenes/3_pyramid.scene.ron",
         "assets/scenes/9_rain.scene.ron",
@@ -62,6 +65,11 @@ fn main() {
             .trim_end_matches(".scene.ron");
         let n = pass.contacts();
         let ratio = batched / scalar;
-        println!("| {name} | {n} | {scalar:.0} | {batched:.0} | {ratio:.2} | {packing:.0} |");
+        let (batches, filled, lone, levels) = pass.packing();
+        let fill = 100.0 * filled as f64 / (batches * 4).max(1) as f64;
+        println!(
+            "| {name} | {n} | {scalar:.0} | {batched:.0} | {ratio:.2} | {packing:.0} \
+             | {batches} | {fill:.0} % | {lone} | {levels} |"
+        );
     }
 }

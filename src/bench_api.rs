@@ -130,6 +130,21 @@ impl ContactPass {
         self.constraints.len()
     }
 
+    /// How the contacts were packed: (batches, how many of their lanes hold a contact,
+    /// contacts the scalar pass solves, runs of batches a pass walks: each a level's).
+    pub fn packing(&self) -> (usize, usize, usize, usize) {
+        use crate::world::{NO_CONTACT, SolveStep};
+        let b = &self.batches;
+        let filled = (b.batches.iter().flat_map(|x| x.contact))
+            .filter(|&c| c != NO_CONTACT)
+            .count();
+        let scalar = (b.steps.iter())
+            .filter(|s| matches!(s, SolveStep::Scalar(_)))
+            .count();
+        let runs = b.steps.len() - scalar;
+        (b.batches.len(), filled, scalar, runs)
+    }
+
     /// Packs the contacts into batches (once a step in the solver).
     pub fn pack(&mut self) {
         self.batches
