@@ -18,9 +18,9 @@ fn main() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     println!(
         "| scene | contacts | scalar pass µs | batched pass µs | × scalar | packing µs \
-         | batches | lanes filled | scalar contacts | levels |"
+         | batches | lanes filled | scalar contacts | levels | sweeps a batch |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for file in [
         "assets/scenes/3_pyramid.scene.ron",
         "assets/scenes/9_rain.scene.ron",
@@ -66,10 +66,11 @@ fn main() {
         let n = pass.contacts();
         let ratio = batched / scalar;
         let (batches, filled, lone, levels) = pass.packing();
+        let sweeps = pass.sweeps_per_batch();
         let fill = 100.0 * filled as f64 / (batches * 4).max(1) as f64;
         println!(
             "| {name} | {n} | {scalar:.0} | {batched:.0} | {ratio:.2} | {packing:.0} \
-             | {batches} | {fill:.0} % | {lone} | {levels} |"
+             | {batches} | {fill:.0} % | {lone} | {levels} | {sweeps:.2} |"
         );
     }
 }

@@ -95,6 +95,8 @@ pub struct ContactPass {
     batches: crate::world::ContactBatches,
     fixed: usize,
     h: f32,
+    /// What the last batched run's passes did.
+    work: crate::world::SolveWork,
 }
 
 impl ContactPass {
@@ -120,6 +122,7 @@ impl ContactPass {
             batches: crate::world::ContactBatches::default(),
             fixed,
             h: world.dt / world.substeps().max(1) as f32,
+            work: Default::default(),
         };
         pass.pack();
         pass
@@ -143,6 +146,11 @@ impl ContactPass {
             .count();
         let runs = b.steps.len() - scalar;
         (b.batches.len(), filled, scalar, runs)
+    }
+
+    /// Normal sweeps per batch solved in the last batched run (at least one each).
+    pub fn sweeps_per_batch(&self) -> f64 {
+        self.work.sweeps as f64 / self.work.batches.max(1) as f64
     }
 
     /// Packs the contacts into batches (once a step in the solver).
@@ -169,8 +177,9 @@ impl ContactPass {
                 use_bias: true,
                 measure,
             };
-            solve_steps(bodies, constraints, batches, 0..n, &[], pass(true));
-            solve_steps(bodies, constraints, batches, 0..fixed, &[], pass(false));
+            let mut work = solve_steps(bodies, constraints, batches, 0..n, &[], pass(true));
+            work += solve_steps(bodies, constraints, batches, 0..fixed, &[], pass(false));
+            self.work = work;
         } else {
             let all: Vec<u32> = (0..constraints.len() as u32).collect();
             warm_start_listed(bodies, constraints, &all);
