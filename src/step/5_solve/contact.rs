@@ -47,7 +47,7 @@ fn spins(b: &SolverBody) -> bool {
 }
 
 /// 1/k for an inverse effective mass k, 0 when nothing can move.
-fn mass_of(k: f32) -> f32 {
+pub(super) fn mass_of(k: f32) -> f32 {
     if k > 0.0 { 1.0 / k } else { 0.0 }
 }
 
@@ -125,35 +125,6 @@ pub fn push_out_share(max_push_out: f32, overlaps_a: u32, overlaps_b: u32) -> f3
     max_push_out / (k as f32).powf(PUSH_OUT_SHARE_EXPONENT)
 }
 
-/// Per body, into `counts` and `heaviest` (one each per body, one pass over the
-/// manifolds): how many of its manifolds overlap another moving body (a point with
-/// negative separation), and the heaviest body it has a manifold with.
-fn count_overlaps_and_heaviest(
-    manifolds: &[Manifold],
-    colliders: &[ColliderEntry],
-    bodies: &[SolverBody],
-    n_bodies: usize,
-    (counts, heaviest): (&mut Vec<u32>, &mut Vec<f32>),
-) {
-    counts.clear();
-    counts.resize(n_bodies, 0);
-    heaviest.clear();
-    heaviest.resize(n_bodies, 0.0);
-    for m in manifolds {
-        let (a, b) = (colliders[m.a as usize].body, colliders[m.b as usize].body);
-        for (i, j) in [(a, b), (b, a)] {
-            if i != STATIC {
-                let other = mass_of(body(bodies, j).inv_mass);
-                heaviest[i as usize] = heaviest[i as usize].max(other);
-            }
-        }
-        if a != STATIC && b != STATIC && m.points().iter().any(|p| p.separation < 0.0) {
-            counts[a as usize] += 1;
-            counts[b as usize] += 1;
-        }
-    }
-}
-
 /// What [`prepare_constraints`] found out about the step's constraints while building
 /// them, so that no later pass reads the 648-byte constraints for a flag. (Measured on
 /// the 5,050-cube pyramid: inside the noise; it is less work, not a visible win.)
@@ -185,21 +156,19 @@ pub struct Prepared {
 pub const SQUEEZE_RATIO: f32 = 10.0;
 
 /// Builds the constraint of every manifold, and says what it found ([`Prepared`]).
+/// `overlaps` and `heaviest`: per body, as the survey found them (`survey::PerBody`).
 pub fn prepare_constraints(
     manifolds: &[Manifold],
     colliders: &[ColliderEntry],
     states: &[BodyState],
     bodies: &[SolverBody],
     stiffness: ContactParams,
-    overlaps: &mut Vec<u32>,
-    heaviest: &mut Vec<f32>,
+    (overlaps, heaviest): (&[u32], &[f32]),
     out: &mut Vec<ContactConstraint>,
     arms: &mut Vec<RollingArms>,
 ) -> Prepared {
     out.clear();
     arms.clear();
-    let per_body = (&mut *overlaps, &mut *heaviest);
-    count_overlaps_and_heaviest(manifolds, colliders, bodies, states.len(), per_body);
     let count = |body: u32| {
         if body == STATIC {
             0

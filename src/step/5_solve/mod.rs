@@ -17,6 +17,7 @@ mod split;
 mod split_tests;
 mod steps;
 mod stiffness;
+mod survey;
 mod wide;
 #[cfg(test)]
 mod wide_tests;
@@ -41,7 +42,8 @@ use joint_direct::JointSystem;
 use joint_forces::store_joint_forces;
 pub(crate) use steps::{Pass, solve_steps, warm_start_steps};
 use stiffness::{HELD_MAX_RATE, JOINT_DAMPING_RATIO, MAX_TENSION_TURN, joint_hertz, tension_omega};
-pub use stiffness::{pair_size, substeps_for, wanted_hertz};
+pub use stiffness::substeps_for;
+use survey::{PerBody, survey_contacts};
 
 /// The solver's stages in execution order. `PrepareContacts` runs once per step; the
 /// five substep stages run `substeps` times; `Restitution` and `StoreImpulses` once.
@@ -60,14 +62,10 @@ pub enum SolverStage {
 /// Scratch kept between steps so the solver does not allocate.
 #[derive(Default)]
 pub struct SolverScratch {
-    /// Bodies this step's contacts touch.
-    active: Vec<u32>,
+    /// Per body: touched by a contact, overlapping contacts, heaviest neighbour.
+    per_body: PerBody,
     /// Each active body's free motion for the current substep.
     free: Vec<FreeStep>,
-    /// Per body: how many of its manifolds overlap (for the push-out share).
-    overlaps: Vec<u32>,
-    /// Per body: the heaviest body it has a manifold with.
-    heaviest: Vec<f32>,
     /// How many constraints, at the front, involve a fixed collider.
     fixed_constraints: usize,
     /// Some constraint has a turning anisotropic body (see [`refresh_rows`]).
@@ -108,15 +106,6 @@ pub fn solve_contacts(
         return;
     }
     let scratch = &mut *scratch;
-    collect_active_bodies(world, &mut scratch.active);
-    for &i in &scratch.active {
-        let (b, s) = (
-            &world.bodies[i as usize],
-            &mut world.solver_bodies[i as usize],
-        );
-        (s.dp, s.dq, s.v, s.w) = (Vec3::ZERO, Quat::IDENTITY, b.v0, b.w0);
-    }
-
     let min_substeps = settings.substeps.max(1);
     let mut params = ContactParams {
         friction: effects.friction,
@@ -132,7 +121,16 @@ pub fn solve_contacts(
     // Last step's impulses were per substep of last step's length: rescale them to this
     // step's substep, then see how stiff the stiffest contact wants to be.
     let limits = (min_substeps, settings.max_substeps);
-    let n = choose_substeps(world, &params, limits, &mut scratch.tension);
+    let vary = limits.1 > limits.0;
+    let stiffest = survey_contacts(world, &params, vary, &mut scratch.per_body);
+    for &i in &scratch.per_body.active {
+        let (b, s) = (
+            &world.bodies[i as usize],
+            &mut world.solver_bodies[i as usize],
+        );
+        (s.dp, s.dq, s.v, s.w) = (Vec3::ZERO, Quat::IDENTITY, b.v0, b.w0);
+    }
+    let n = choose_substeps(world, &params, limits, stiffest, &mut scratch.tension);
     params.h = dt / n as f32;
     // Stiffness capped at a quarter of the substep rate.
     params.max_hertz = 0.25 / params.h;
@@ -221,10 +219,9 @@ fn run_stage(
         SolverStage::PrepareContacts => {
             let stiffness = *params;
             let (m, c, s) = (&world.manifolds, &world.colliders, &world.bodies);
-            let (out, overlaps) = (&mut world.constraints, &mut scratch.overlaps);
-            let (heaviest, arms) = (&mut scratch.heaviest, &mut world.rolling_arms);
-            let found =
-                prepare_constraints(m, c, s, bodies, stiffness, overlaps, heaviest, out, arms);
+            let (out, arms) = (&mut world.constraints, &mut world.rolling_arms);
+            let per_body = (&*scratch.per_body.overlaps, &*scratch.per_body.heaviest);
+            let found = prepare_constraints(m, c, s, bodies, stiffness, per_body, out, arms);
             scratch.fixed_constraints = found.fixed;
             debug_assert!(
                 world.constraints[scratch.fixed_constraints..]
@@ -261,7 +258,7 @@ fn run_stage(
         }
         SolverStage::IntegrateVelocities => {
             scratch.free.clear();
-            for &i in &scratch.active {
+            for &i in &scratch.per_body.active {
                 let (b, s) = (&world.bodies[i as usize], &mut bodies[i as usize]);
                 let q = (s.dq * b.q0).normalize();
                 if !b.round {
@@ -343,7 +340,7 @@ fn run_stage(
             // consistent kinematics).
             let turn_inertia = scratch.refresh || !world.joints.is_empty();
             scratch.measured = false;
-            for (&i, fs) in scratch.active.iter().zip(&scratch.free) {
+            for (&i, fs) in scratch.per_body.active.iter().zip(&scratch.free) {
                 let (b, s) = (&world.bodies[i as usize], &mut bodies[i as usize]);
                 s.dp += fs.dx + h * (s.v - fs.v);
                 s.dq = (rotate(fs.q, s.w - fs.w, h) * b.q0.inverse()).normalize();
@@ -375,45 +372,17 @@ fn run_stage(
 }
 
 /// The substeps this step needs: enough for the stiffest contact's wanted frequency
-/// (see [`stiffness`](self::stiffness)), between the setting and `max`. Loads are read
-/// from last step's impulses, taken per substep of last step's length.
+/// (`stiffest`, Hz, from the survey; see [`stiffness`](self::stiffness)) and for the
+/// joints, between the setting and `max`.
 fn choose_substeps(
     world: &PhysicsWorld,
     p: &ContactParams,
     (min, max): (u32, u32),
+    mut stiffest: f32,
     scratch: &mut Vec<(u32, f32)>,
 ) -> u32 {
     if max <= min {
         return min;
-    }
-    let last = if world.last_substep > 0.0 {
-        world.last_substep
-    } else {
-        p.h
-    };
-    let body = |c: u32| {
-        let body = world.colliders[c as usize].body;
-        if body == STATIC {
-            (0.0, Vec3::ZERO)
-        } else {
-            let b = &world.solver_bodies[body as usize];
-            (b.inv_mass, world.bodies[body as usize].v0)
-        }
-    };
-    // Resting: closing or parting slower than gravity changes speed in two steps.
-    let resting_speed = 2.0 * p.gravity * world.dt;
-    let mut stiffest = 0.0f32;
-    for m in &world.manifolds {
-        let load: f32 = m.points().iter().map(|p| p.normal_impulse).sum::<f32>() * p.h / last;
-        let (ca, cb) = (
-            &world.colliders[m.a as usize],
-            &world.colliders[m.b as usize],
-        );
-        let size = pair_size(&ca.shape, &cb.shape);
-        let ((ima, va), (imb, vb)) = (body(m.a), body(m.b));
-        let resting = m.normal.dot(vb - va).abs() <= resting_speed;
-        let wanted = wanted_hertz(p, ima, imb, load, size, resting);
-        stiffest = stiffest.max(wanted.needed);
     }
     // Joints with limits: a soft limit row sags under its load as a contact does. (The
     // rows that hold a joint together are solved exactly and may be stiffer than the
@@ -455,25 +424,6 @@ pub fn limit_spin(w: Vec3, dt: f32) -> Vec3 {
 pub fn iterations_for(setting: u32, max_ratio: f32) -> u32 {
     let extra = max_ratio.max(1.0).log10().ceil() as u32;
     setting.max(1).max(extra.min(8))
-}
-
-/// Marks and lists the dynamic and kinematic bodies that any manifold or joint touches.
-fn collect_active_bodies(world: &mut PhysicsWorld, active: &mut Vec<u32>) {
-    active.clear();
-    for b in world.bodies.iter_mut() {
-        b.in_contact = false;
-    }
-    let (colliders, bodies) = (&world.colliders, &mut world.bodies);
-    let body = |c: u32| colliders[c as usize].body;
-    let manifolds = world.manifolds.iter().flat_map(|m| [body(m.a), body(m.b)]);
-    let joints = world.joints.iter().flat_map(|j| [j.a, j.b]);
-    for i in manifolds.chain(joints) {
-        if i != STATIC && !bodies[i as usize].in_contact {
-            bodies[i as usize].in_contact = true;
-            active.push(i);
-        }
-    }
-    active.sort_unstable();
 }
 
 /// StoreImpulses: results into the manifolds (for readers) and the warm-start cache.
