@@ -54,6 +54,8 @@ pub(crate) struct ContactBatches {
     /// How many steps, at the front, are those of the contacts with fixed colliders
     /// (which each pass runs again at its end).
     pub fixed_steps: usize,
+    /// How many batches, at the front, are those of the contacts with fixed colliders.
+    pub fixed_batches: usize,
     /// Per body: one more than the level of its last contact (scratch).
     stamp: Vec<u32>,
     /// Per contact of the part being packed: its level (scratch).
@@ -99,18 +101,21 @@ fn scalar_only(c: &ContactConstraint) -> bool {
 /// contacts sit all over the constraint list, and each is 648 bytes.
 const PREFETCH_AHEAD: usize = 8;
 
-/// Asks the CPU for all of a constraint's cache lines (no effect elsewhere).
+/// Asks the CPU for all of `x`'s cache lines, to be read or written soon (on x86_64; no
+/// effect elsewhere).
 #[inline(always)]
-fn prefetch(c: &ContactConstraint) {
+pub(crate) fn prefetch<T>(x: &T) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-        let p = (c as *const ContactConstraint).cast::<i8>();
-        for line in (0..size_of::<ContactConstraint>()).step_by(64) {
-            // SAFETY: a prefetch reads nothing; the address is inside `c`.
+        let p = (x as *const T).cast::<i8>();
+        for line in (0..size_of::<T>()).step_by(64) {
+            // SAFETY: a prefetch reads nothing; the address is inside `x`.
             unsafe { _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(line)) };
         }
     }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = x;
 }
 
 impl ContactBatches {
@@ -131,6 +136,7 @@ impl ContactBatches {
         self.stamp.resize(bodies.len(), 0);
         self.pack(constraints, bodies, 0..fixed);
         self.fixed_steps = self.steps.len();
+        self.fixed_batches = self.batches.len();
         self.pack(constraints, bodies, fixed..constraints.len());
         debug_assert!(self.is_valid(constraints, bodies), "a batch shares a body");
     }
@@ -248,9 +254,10 @@ impl ContactBatches {
         first..self.batches[batches.end - 1].range().end
     }
 
-    /// The batches' accumulated impulses back into the constraints.
-    pub(crate) fn write_back(&self, constraints: &mut [ContactConstraint]) {
-        for (b, f) in self.batches.iter().zip(&self.friction) {
+    /// The accumulated impulses of a range of batches back into their constraints.
+    pub(crate) fn write_back(&self, batches: Range<usize>, constraints: &mut [ContactConstraint]) {
+        let friction = &self.friction[batches.clone()];
+        for (b, f) in self.batches[batches].iter().zip(friction) {
             b.write_back(&self.points, f, constraints);
         }
     }

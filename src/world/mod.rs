@@ -16,7 +16,7 @@ mod warm_start_cache;
 
 pub(crate) use awake_tree::AwakeTree;
 pub(crate) use batching::{
-    ContactBatches, LANES, NO_CONTACT, SolveStep, SolveWork, moved_by_contacts,
+    ContactBatches, LANES, NO_CONTACT, SolveStep, SolveWork, moved_by_contacts, prefetch,
 };
 pub(crate) use body_view::{BodyView, Shared, SharedBodies};
 pub(crate) use constraint::{

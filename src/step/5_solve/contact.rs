@@ -390,18 +390,27 @@ pub fn sum_impulses(constraints: &[ContactConstraint], manifolds: &mut [Manifold
 /// Each point's share of its constraint's friction impulse (world frame, N·s) and twist
 /// impulse (N·m·s): its share of the normal impulse, or equal shares when none pushes.
 pub fn friction_shares(c: &ContactConstraint) -> [(Vec3, f32); MAX_POINTS] {
-    let points = &c.points[..c.len];
-    let total = points.iter().map(|p| p.normal_impulse).sum::<f32>();
+    let mut impulses = [0.0; MAX_POINTS];
+    for (i, p) in impulses.iter_mut().zip(&c.points[..c.len]) {
+        *i = p.normal_impulse;
+    }
     let t = c.anchor.tangent_impulse;
     let tangent = c.tangent1 * t.x + c.tangent2 * t.y;
+    shares_of(&impulses[..c.len], tangent, c.anchor.twist_impulse)
+}
+
+/// [`friction_shares`] of the points' normal impulses `impulses`, the friction impulse
+/// `tangent` (world frame) and the twist impulse `twist`.
+pub(super) fn shares_of(impulses: &[f32], tangent: Vec3, twist: f32) -> [(Vec3, f32); MAX_POINTS] {
+    let total = impulses.iter().sum::<f32>();
     let mut shares = [(Vec3::ZERO, 0.0); MAX_POINTS];
-    for (s, p) in shares.iter_mut().zip(points) {
+    for (s, &i) in shares.iter_mut().zip(impulses) {
         let w = if total > 0.0 {
-            p.normal_impulse / total
+            i / total
         } else {
-            1.0 / c.len as f32
+            1.0 / impulses.len() as f32
         };
-        *s = (tangent * w, c.anchor.twist_impulse * w);
+        *s = (tangent * w, twist * w);
     }
     shares
 }

@@ -17,6 +17,7 @@ mod split;
 mod split_tests;
 mod steps;
 mod stiffness;
+mod store;
 mod survey;
 mod wide;
 #[cfg(test)]
@@ -43,6 +44,7 @@ use joint_forces::store_joint_forces;
 pub(crate) use steps::{Pass, solve_steps, warm_start_steps};
 use stiffness::{HELD_MAX_RATE, JOINT_DAMPING_RATIO, MAX_TENSION_TURN, joint_hertz, tension_omega};
 pub use stiffness::substeps_for;
+use store::store_impulses;
 use survey::{PerBody, survey_contacts};
 
 /// The solver's stages in execution order. `PrepareContacts` runs once per step; the
@@ -80,6 +82,9 @@ pub struct SolverScratch {
     /// [`solve_batches`](wide::solve_batches)): a substep's Relax measures them, and the
     /// next substep's Solve, before which nothing moves, reads them.
     measured: bool,
+    /// How many batches, at the front, had their impulses written back to their
+    /// constraints (the rest are stored from their lanes: see `store`).
+    written_back: usize,
     /// Whether this step's passes over all contacts, and over the fixed ones, split their
     /// wide levels between threads (decided once a step: `split::worth_splitting`).
     split: [bool; 2],
@@ -190,7 +195,15 @@ pub fn solve_contacts(
     } else {
         substeps(world, scratch, None);
     }
-    scratch.batches.write_back(&mut world.constraints);
+    // Back to their constraints: the contacts a later stage reads as constraints (see
+    // `store`): those with fixed colliders (the final stop), or all when some bounce.
+    let batches = &scratch.batches;
+    scratch.written_back = if effects.restitution && scratch.bounce {
+        batches.batches.len()
+    } else {
+        batches.fixed_batches
+    };
+    batches.write_back(0..scratch.written_back, &mut world.constraints);
     if effects.restitution {
         run(SolverStage::Restitution, world, scratch, None);
     }
@@ -365,7 +378,7 @@ fn run_stage(
             stop_approach(bodies, &mut world.constraints[..fixed], &world.rolling_arms);
         }
         SolverStage::StoreImpulses => {
-            store_impulses(world);
+            store_impulses(world, &scratch.batches, scratch.written_back);
             store_joint_forces(&mut world.joints, &world.solver_bodies, h);
         }
     }
@@ -424,25 +437,4 @@ pub fn limit_spin(w: Vec3, dt: f32) -> Vec3 {
 pub fn iterations_for(setting: u32, max_ratio: f32) -> u32 {
     let extra = max_ratio.max(1.0).log10().ceil() as u32;
     setting.max(1).max(extra.min(8))
-}
-
-/// StoreImpulses: results into the manifolds (for readers) and the warm-start cache.
-fn store_impulses(world: &mut PhysicsWorld) {
-    for c in &world.constraints {
-        let m = &mut world.manifolds[c.manifold as usize];
-        // What this step warm-started from, last step's load, is the previous one now.
-        m.previous_load = m.points().iter().map(|p| p.normal_impulse).sum();
-        let shares = contact::friction_shares(c);
-        for ((mp, cp), share) in m.points_mut().iter_mut().zip(&c.points).zip(shares) {
-            mp.normal_impulse = cp.normal_impulse;
-            (mp.tangent_impulse, mp.twist_impulse) = share;
-            mp.approach_speed = (-cp.relative_velocity).max(0.0);
-        }
-    }
-    let colliders = &world.colliders;
-    let key = |m: &crate::world::Manifold| {
-        let entity = |i: u32| colliders[i as usize].entity;
-        (entity(m.a), entity(m.b), m.sub)
-    };
-    world.impulse_cache.index(&world.manifolds, key);
 }

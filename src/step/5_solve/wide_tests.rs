@@ -180,7 +180,7 @@ fn batched_passes_compute_the_scalar_passes_bit_for_bit() {
             }
             assert_same(&lanes, &scalar, &format!("round {round}, pass {pass}"));
         }
-        batches.write_back(&mut constraints);
+        batches.write_back(0..batches.batches.len(), &mut constraints);
         for (i, (x, y)) in constraints.iter().zip(&scalar_constraints).enumerate() {
             for (p, q) in x.points[..x.len].iter().zip(&y.points) {
                 assert!(

@@ -1,0 +1,101 @@
+//! StoreImpulses: the step's results into the manifolds (for readers, and to warm-start
+//! the next step) and the warm-start cache.
+//!
+//! A batched contact's impulses live in its batch's lanes until the passes end. Only
+//! the contacts a later stage reads as constraints go back to them (`written_back`: the
+//! batches of the contacts with fixed colliders, which the final stop reads, or all of
+//! them when something bounces); the rest go from the lanes straight to their manifolds.
+//! Before, every batch was written back to its 648-byte constraint and then read from
+//! it again (100 pyramids: 1.0 and 1.1 ms a step).
+
+use bevy::prelude::*;
+
+use super::contact::{friction_shares, shares_of};
+use crate::world::{
+    ContactBatches, ContactConstraint, MAX_POINTS, Manifold, NO_CONTACT, PhysicsWorld, SolveStep,
+    prefetch,
+};
+
+/// How many batches ahead of the one being stored its manifolds are fetched.
+const PREFETCH_AHEAD: usize = 2;
+
+/// Stores the step's impulses: from the constraints for every contact but those of
+/// `batches.batches[written_back..]`, which are stored from their lanes.
+pub(super) fn store_impulses(world: &mut PhysicsWorld, batches: &ContactBatches, written_back: usize) {
+    let (constraints, manifolds) = (&world.constraints, &mut world.manifolds);
+    if written_back >= batches.batches.len() {
+        for c in constraints {
+            store_constraint(c, manifolds);
+        }
+    } else {
+        let batched = batches.batches[..written_back].iter().flat_map(|b| b.contact);
+        let scalar = batches.steps.iter().filter_map(|s| match s {
+            SolveStep::Scalar(c) => Some(*c),
+            SolveStep::Batches(_) => None,
+        });
+        for ci in batched.chain(scalar).filter(|&c| c != NO_CONTACT) {
+            store_constraint(&constraints[ci as usize], manifolds);
+        }
+        let (lanes, friction) = (&batches.batches[written_back..], &batches.friction[written_back..]);
+        for (j, (b, f)) in lanes.iter().zip(friction).enumerate() {
+            // A level's contacts sit all over the manifold list: fetched a batch ahead.
+            if let Some(next) = lanes.get(j + PREFETCH_AHEAD) {
+                let valid = next.contact.iter().filter(|&&c| c != NO_CONTACT);
+                valid.for_each(|&c| prefetch(&manifolds[c as usize]));
+            }
+            let points = &batches.points[b.range()];
+            for (l, &ci) in b.contact.iter().enumerate() {
+                if ci == NO_CONTACT {
+                    continue;
+                }
+                // Constraints are built one a manifold, in manifold order.
+                debug_assert_eq!(constraints[ci as usize].manifold, ci, "constraint order");
+                let m = &mut manifolds[ci as usize];
+                let lane = |x: &crate::math::lanes::F4| x.as_array_ref()[l];
+                let (mut impulses, mut approach) = ([0.0; MAX_POINTS], [0.0; MAX_POINTS]);
+                for ((i, a), p) in impulses.iter_mut().zip(&mut approach).zip(points) {
+                    (*i, *a) = (lane(&p.normal_impulse), lane(&p.relative_velocity));
+                }
+                let t = [lane(&f.tangent_impulse[0]), lane(&f.tangent_impulse[1])];
+                let tangent = b.tangents[0].lane(l) * t[0] + b.tangents[1].lane(l) * t[1];
+                let shares = shares_of(&impulses[..m.len], tangent, lane(&f.twist_impulse));
+                store_manifold(m, &impulses, &approach, shares);
+            }
+        }
+    }
+    let colliders = &world.colliders;
+    let key = |m: &Manifold| {
+        let entity = |i: u32| colliders[i as usize].entity;
+        (entity(m.a), entity(m.b), m.sub)
+    };
+    world.impulse_cache.index(&world.manifolds, key);
+}
+
+/// One constraint's results into its manifold.
+fn store_constraint(c: &ContactConstraint, manifolds: &mut [Manifold]) {
+    let (mut impulses, mut approach) = ([0.0; MAX_POINTS], [0.0; MAX_POINTS]);
+    for ((i, a), p) in impulses.iter_mut().zip(&mut approach).zip(&c.points[..c.len]) {
+        (*i, *a) = (p.normal_impulse, p.relative_velocity);
+    }
+    let shares = friction_shares(c);
+    store_manifold(&mut manifolds[c.manifold as usize], &impulses, &approach, shares);
+}
+
+/// A manifold's points' normal impulses, approach (relative normal) velocities and
+/// friction shares, as the step ends.
+#[inline(always)]
+fn store_manifold(
+    m: &mut Manifold,
+    impulses: &[f32; MAX_POINTS],
+    approach: &[f32; MAX_POINTS],
+    shares: [(Vec3, f32); MAX_POINTS],
+) {
+    // What this step warm-started from, last step's load, is the previous one now.
+    m.previous_load = m.points().iter().map(|p| p.normal_impulse).sum();
+    let points = m.points_mut().iter_mut().zip(impulses).zip(approach);
+    for (((mp, &i), &a), share) in points.zip(shares) {
+        mp.normal_impulse = i;
+        (mp.tangent_impulse, mp.twist_impulse) = share;
+        mp.approach_speed = (-a).max(0.0);
+    }
+}
