@@ -4,7 +4,7 @@
 //! bias rate ω/a₁, mass scale a₂a₃, impulse scale a₃.
 //! A soft contact under load L sinks by L/(m_eff·ω²), like the spring it is.
 
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Softness {
     pub bias_rate: f32,
     pub mass_scale: f32,

@@ -127,7 +127,7 @@ pub(crate) fn row_velocity(
 }
 
 /// The contact of one manifold prepared for the solver.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct ContactConstraint {
     /// Body indices, or [`STATIC`].
     pub a: u32,
@@ -208,6 +208,15 @@ pub(crate) fn store(bodies: &mut [SolverBody], i: u32, b: SolverBody) {
 
 /// `Anchoring::roll` of a contact whose anchors simply turn with their bodies.
 pub(crate) const NO_ROLL: u32 = u32::MAX;
+
+impl Default for Anchoring {
+    fn default() -> Self {
+        Self {
+            turn: [false; 2],
+            roll: NO_ROLL,
+        }
+    }
+}
 
 /// How a contact's anchors move as their bodies turn, when measuring separation. Eight
 /// bytes: the rare rolling motions live in a side list (`PhysicsWorld::rolling_arms`),

@@ -234,7 +234,9 @@ fn run_stage(
             let (m, c, s) = (&world.manifolds, &world.colliders, &world.bodies);
             let (out, arms) = (&mut world.constraints, &mut world.rolling_arms);
             let per_body = (&*scratch.per_body.overlaps, &*scratch.per_body.heaviest);
-            let found = prepare_constraints(m, c, s, bodies, stiffness, per_body, out, arms);
+            let threads = bevy::tasks::ComputeTaskPool::try_get().map_or(1, |p| p.thread_num());
+            let found =
+                prepare_constraints(m, c, s, bodies, stiffness, per_body, out, arms, threads);
             scratch.fixed_constraints = found.fixed;
             debug_assert!(
                 world.constraints[scratch.fixed_constraints..]
