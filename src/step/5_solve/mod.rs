@@ -17,6 +17,8 @@ mod split;
 mod split_tests;
 mod steps;
 mod stiffness;
+#[cfg(test)]
+mod prepare_tests;
 mod store;
 mod survey;
 mod wide;
@@ -32,7 +34,7 @@ use crate::world::{
     ContactBatches, ContactParams, PhysicsWorld, STATIC, SolveWork, is_isotropic, world_inv_inertia,
 };
 
-pub use contact::{prepare_constraints, refresh_rows, sum_impulses};
+pub use contact::{PARALLEL_PREPARE_FROM, prepare_constraints, refresh_rows, sum_impulses};
 pub use continuous::sweep_against_fixed;
 use crew::{Crew, StopOnDrop};
 pub use iterate::{apply_restitution, stop_approach};
@@ -235,8 +237,9 @@ fn run_stage(
             let (out, arms) = (&mut world.constraints, &mut world.rolling_arms);
             let per_body = (&*scratch.per_body.overlaps, &*scratch.per_body.heaviest);
             let threads = bevy::tasks::ComputeTaskPool::try_get().map_or(1, |p| p.thread_num());
+            let split = threads >= 2 && m.len() >= PARALLEL_PREPARE_FROM;
             let found =
-                prepare_constraints(m, c, s, bodies, stiffness, per_body, out, arms, threads);
+                prepare_constraints(m, c, s, bodies, stiffness, per_body, out, arms, split);
             scratch.fixed_constraints = found.fixed;
             debug_assert!(
                 world.constraints[scratch.fixed_constraints..]
