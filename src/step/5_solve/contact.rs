@@ -9,7 +9,7 @@ use crate::collider::Shape;
 use crate::world::{
     Anchoring, AngularRow, BodyState, ColliderEntry, ConstraintPoint, ContactConstraint,
     ContactParams, FrictionAnchor, MAX_POINTS, Manifold, NO_ROLL, RollingArms, STATIC, SolverBody,
-    body, is_isotropic, row_velocity,
+    body, is_isotropic, prefetch, row_velocity,
 };
 
 /// A turning sphere's centre from its body's centre of mass (zero when they coincide,
@@ -218,6 +218,10 @@ pub fn prepare_constraints(
     }
 }
 
+/// How many manifolds ahead of the one being prepared its bodies and constraint are
+/// fetched (its colliders twice as far).
+const PREFETCH_AHEAD: usize = 4;
+
 /// What every constraint reads besides its manifold.
 type Shared<'a> = (
     &'a [ColliderEntry],
@@ -257,6 +261,22 @@ fn prepare_run(
         bounce: false,
     };
     for (mi, m) in manifolds.iter().enumerate() {
+        // What a later manifold reads and writes, fetched ahead: its colliders (a scene's
+        // colliders by index, in no order the manifolds follow), then, once they have
+        // come, its bodies, and the constraint it fills.
+        if let Some(next) = manifolds.get(mi + 2 * PREFETCH_AHEAD) {
+            prefetch(&colliders[next.a as usize]);
+            prefetch(&colliders[next.b as usize]);
+        }
+        if let Some(next) = manifolds.get(mi + PREFETCH_AHEAD) {
+            for i in [colliders[next.a as usize].body, colliders[next.b as usize].body] {
+                if i != STATIC {
+                    prefetch(&states[i as usize]);
+                    prefetch(&bodies[i as usize]);
+                }
+            }
+            prefetch(&out[mi + PREFETCH_AHEAD]);
+        }
         let (ca, cb) = (&colliders[m.a as usize], &colliders[m.b as usize]);
         let centre = |c: &ColliderEntry| {
             if c.body == STATIC {
