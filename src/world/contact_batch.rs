@@ -7,8 +7,8 @@
 use bevy::prelude::*;
 
 use super::{
-    ConstraintPoint, ContactConstraint, LANES, MAX_POINTS, NO_CONTACT, STATIC, SolverBody, body,
-    moved_by_contacts,
+    ConstraintPoint, ContactConstraint, ContactKey, LANES, MAX_POINTS, NO_CONTACT, STATIC,
+    SolverBody, body,
 };
 use crate::math::lanes::{F4, V3};
 
@@ -75,7 +75,7 @@ pub(crate) struct ContactBatch {
     pub a: [u32; LANES],
     pub b: [u32; LANES],
     /// Whether the contacts move each lane's body on each side (see
-    /// [`moved_by_contacts`]): only those velocities are written back.
+    /// `moved_by_contacts`): only those velocities are written back.
     pub moved: [[bool; LANES]; 2],
     pub normal: V3,
     pub tangents: [V3; 2],
@@ -152,7 +152,7 @@ impl ContactBatch {
     /// The batch of the listed constraints, its points appended to `points` and
     /// `anchors` and its friction impulses to `friction`.
     pub(crate) fn new(
-        constraints: &[ContactConstraint],
+        (constraints, keys): (&[ContactConstraint], &[ContactKey]),
         bodies: &[SolverBody],
         contact: [u32; LANES],
         (points, anchors): (&mut Vec<PointLanes>, &mut Vec<AnchorLanes>),
@@ -194,8 +194,8 @@ impl ContactBatch {
             }
             let c = &constraints[ci as usize];
             (b.a[l], b.b[l]) = (c.a, c.b);
-            b.moved[0][l] = moved_by_contacts(bodies, c.a);
-            b.moved[1][l] = moved_by_contacts(bodies, c.b);
+            b.moved[0][l] = keys[ci as usize].moved[0];
+            b.moved[1][l] = keys[ci as usize].moved[1];
             b.normal.set(l, c.normal);
             b.tangents[0].set(l, c.tangent1);
             b.tangents[1].set(l, c.tangent2);

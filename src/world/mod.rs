@@ -16,7 +16,7 @@ mod warm_start_cache;
 
 pub(crate) use awake_tree::AwakeTree;
 pub(crate) use batching::{
-    ContactBatches, LANES, NO_CONTACT, SolveStep, SolveWork, moved_by_contacts, prefetch,
+    ContactBatches, ContactKey, LANES, NO_CONTACT, SolveStep, SolveWork, prefetch,
 };
 pub(crate) use body_view::{BodyView, Shared, SharedBodies};
 pub(crate) use constraint::{
@@ -277,6 +277,8 @@ pub struct PhysicsWorld {
     pub(crate) sensor_overlaps: Vec<Manifold>,
     /// Per-point contact constraints built by the solver.
     pub(crate) constraints: Vec<ContactConstraint>,
+    /// What packing reads of each constraint (the same index).
+    pub(crate) contact_keys: Vec<ContactKey>,
     /// The turning arms of the few constraints with a rolling off-centre sphere
     /// (`Anchoring::roll` indexes it).
     pub(crate) rolling_arms: Vec<RollingArms>,

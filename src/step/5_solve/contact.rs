@@ -8,8 +8,8 @@ use super::stiffness::{contact_softness, load_ratio, pair_size};
 use crate::collider::Shape;
 use crate::world::{
     Anchoring, AngularRow, BodyState, ColliderEntry, ConstraintPoint, ContactConstraint,
-    ContactParams, FrictionAnchor, MAX_POINTS, Manifold, NO_ROLL, RollingArms, STATIC, SolverBody,
-    body, is_isotropic, prefetch, row_velocity,
+    ContactKey, ContactParams, FrictionAnchor, MAX_POINTS, Manifold, NO_ROLL, RollingArms, STATIC,
+    SolverBody, body, is_isotropic, prefetch, row_velocity,
 };
 
 /// A turning sphere's centre from its body's centre of mass (zero when they coincide,
@@ -173,19 +173,21 @@ pub fn prepare_constraints(
     bodies: &[SolverBody],
     stiffness: ContactParams,
     per_body: (&[u32], &[f32]),
-    out: &mut Vec<ContactConstraint>,
+    (out, keys): (&mut Vec<ContactConstraint>, &mut Vec<ContactKey>),
     arms: &mut Vec<RollingArms>,
     split: bool,
 ) -> Prepared {
     out.resize_with(manifolds.len(), ContactConstraint::default);
+    keys.resize(manifolds.len(), ContactKey::default());
     arms.clear();
     let shared = (colliders, states, bodies, stiffness, per_body);
     if !split {
-        return prepare_run(manifolds, 0, shared, out, arms);
+        return prepare_run(manifolds, 0, shared, (out, keys), arms);
     }
     let half = manifolds.len() / 2;
     let (first, second) = manifolds.split_at(half);
     let (out_first, out_second) = out.split_at_mut(half);
+    let (keys_first, keys_second) = keys.split_at_mut(half);
     // (Allocates only if the second half has a rolling contact.)
     let mut second_arms = Vec::new();
     let mut found = [None, None];
@@ -193,9 +195,15 @@ pub fn prepare_constraints(
         let [f0, f1] = &mut found;
         let arms1 = &mut second_arms;
         scope.spawn(async move {
-            *f1 = Some(prepare_run(second, half, shared, out_second, arms1));
+            *f1 = Some(prepare_run(
+                second,
+                half,
+                shared,
+                (out_second, keys_second),
+                arms1,
+            ));
         });
-        *f0 = Some(prepare_run(first, 0, shared, out_first, arms));
+        *f0 = Some(prepare_run(first, 0, shared, (out_first, keys_first), arms));
     });
     let [Some(f0), Some(f1)] = found else {
         unreachable!("both halves ran");
@@ -232,16 +240,18 @@ type Shared<'a> = (
 );
 
 /// [`prepare_constraints`] of a run of manifolds, the first of which is manifold
-/// `first`, into `out` (as long as the run); its rolling motions pushed onto `arms`.
+/// `first`, into `out` and `keys` (as long as the run); its rolling motions pushed onto
+/// `arms`.
 /// `Prepared::fixed` counts the run's own leading fixed contacts.
 fn prepare_run(
     manifolds: &[Manifold],
     first: usize,
     (colliders, states, bodies, stiffness, (overlaps, heaviest)): Shared,
-    out: &mut [ContactConstraint],
+    (out, keys): (&mut [ContactConstraint], &mut [ContactKey]),
     arms: &mut Vec<RollingArms>,
 ) -> Prepared {
     debug_assert_eq!(manifolds.len(), out.len(), "one constraint a manifold");
+    debug_assert_eq!(manifolds.len(), keys.len(), "one key a manifold");
     let count = |body: u32| {
         if body == STATIC {
             0
@@ -269,7 +279,10 @@ fn prepare_run(
             prefetch(&colliders[next.b as usize]);
         }
         if let Some(next) = manifolds.get(mi + PREFETCH_AHEAD) {
-            for i in [colliders[next.a as usize].body, colliders[next.b as usize].body] {
+            for i in [
+                colliders[next.a as usize].body,
+                colliders[next.b as usize].body,
+            ] {
                 if i != STATIC {
                     prefetch(&states[i as usize]);
                     prefetch(&bodies[i as usize]);
@@ -380,6 +393,7 @@ fn prepare_run(
         if (c.a == STATIC || c.b == STATIC) && found.fixed == mi {
             found.fixed += 1;
         }
+        keys[mi] = ContactKey::of_sides(c, [&sa, &sb]);
         found.refresh |= c.refresh;
         found.report |= c.report;
         found.bounce |= c.restitution > 0.0;

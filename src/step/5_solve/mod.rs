@@ -234,7 +234,8 @@ fn run_stage(
         SolverStage::PrepareContacts => {
             let stiffness = *params;
             let (m, c, s) = (&world.manifolds, &world.colliders, &world.bodies);
-            let (out, arms) = (&mut world.constraints, &mut world.rolling_arms);
+            let out = (&mut world.constraints, &mut world.contact_keys);
+            let arms = &mut world.rolling_arms;
             let per_body = (&*scratch.per_body.overlaps, &*scratch.per_body.heaviest);
             let threads = bevy::tasks::ComputeTaskPool::try_get().map_or(1, |p| p.thread_num());
             let split = threads >= 2 && m.len() >= PARALLEL_PREPARE_FROM;
@@ -268,7 +269,8 @@ fn run_stage(
             (scratch.refresh, scratch.report) = (found.refresh, found.report);
             scratch.bounce = found.bounce;
             let fixed = scratch.fixed_constraints;
-            scratch.batches.build(&world.constraints, bodies, fixed);
+            let (constraints, keys) = (&world.constraints, &world.contact_keys);
+            scratch.batches.build_keyed(constraints, keys, bodies, fixed);
             scratch.measured = false;
             let batches = &scratch.batches;
             let worth = |steps| split::worth_splitting(batches, &steps);

@@ -8,7 +8,7 @@ use bevy::tasks::{ComputeTaskPool, TaskPoolBuilder};
 use super::prepare_constraints;
 use super::survey::{PerBody, survey_contacts};
 use crate::scene::SceneDesc;
-use crate::world::{ContactParams, PhysicsWorld};
+use crate::world::{ContactKey, ContactParams, PhysicsWorld};
 
 fn params() -> ContactParams {
     ContactParams {
@@ -31,10 +31,21 @@ fn compare(world: &PhysicsWorld, per_body: &PerBody, n: usize, what: &str) -> us
     let counts = (&*per_body.overlaps, &*per_body.heaviest);
     let (mut one, mut two) = (Vec::new(), Vec::new());
     let (mut arms1, mut arms2) = (Vec::new(), Vec::new());
-    let f1 = prepare_constraints(m, c, s, b, params(), counts, &mut one, &mut arms1, false);
-    let f2 = prepare_constraints(m, c, s, b, params(), counts, &mut two, &mut arms2, true);
+    let (mut keys1, mut keys2) = (Vec::new(), Vec::new());
+    let out1 = (&mut one, &mut keys1);
+    let f1 = prepare_constraints(m, c, s, b, params(), counts, out1, &mut arms1, false);
+    let out2 = (&mut two, &mut keys2);
+    let f2 = prepare_constraints(m, c, s, b, params(), counts, out2, &mut arms2, true);
     assert_eq!(f1, f2, "{what}: findings");
-    assert_eq!(format!("{arms1:?}"), format!("{arms2:?}"), "{what}: rolling motions");
+    assert_eq!(keys1, keys2, "{what}: keys");
+    for (i, (c, k)) in one.iter().zip(&keys1).enumerate() {
+        assert_eq!(ContactKey::of(c, b), *k, "{what}: key {i}");
+    }
+    assert_eq!(
+        format!("{arms1:?}"),
+        format!("{arms2:?}"),
+        "{what}: rolling motions"
+    );
     assert_eq!(one.len(), n, "{what}: one constraint a manifold");
     for (i, (x, y)) in one.iter().zip(&two).enumerate() {
         assert_eq!(format!("{x:?}"), format!("{y:?}"), "{what}: constraint {i}");
@@ -75,7 +86,8 @@ fn constraints_built_in_halves_are_the_same_bits() {
             &world.solver_bodies,
         );
         let counts = (&*per_body.overlaps, &*per_body.heaviest);
-        prepare_constraints(m, c, s, b, params(), counts, &mut Vec::new(), &mut arms, false);
+        let out = (&mut Vec::new(), &mut Vec::new());
+        prepare_constraints(m, c, s, b, params(), counts, out, &mut arms, false);
         rolled += arms.len();
     }
     assert!(rolled > 0, "no scene had a rolling shape in contact");

@@ -21,14 +21,20 @@ const PREFETCH_AHEAD: usize = 2;
 
 /// Stores the step's impulses: from the constraints for every contact but those of
 /// `batches.batches[written_back..]`, which are stored from their lanes.
-pub(super) fn store_impulses(world: &mut PhysicsWorld, batches: &ContactBatches, written_back: usize) {
+pub(super) fn store_impulses(
+    world: &mut PhysicsWorld,
+    batches: &ContactBatches,
+    written_back: usize,
+) {
     let (constraints, manifolds) = (&world.constraints, &mut world.manifolds);
     if written_back >= batches.batches.len() {
         for c in constraints {
             store_constraint(c, manifolds);
         }
     } else {
-        let batched = batches.batches[..written_back].iter().flat_map(|b| b.contact);
+        let batched = batches.batches[..written_back]
+            .iter()
+            .flat_map(|b| b.contact);
         let scalar = batches.steps.iter().filter_map(|s| match s {
             SolveStep::Scalar(c) => Some(*c),
             SolveStep::Batches(_) => None,
@@ -36,7 +42,10 @@ pub(super) fn store_impulses(world: &mut PhysicsWorld, batches: &ContactBatches,
         for ci in batched.chain(scalar).filter(|&c| c != NO_CONTACT) {
             store_constraint(&constraints[ci as usize], manifolds);
         }
-        let (lanes, friction) = (&batches.batches[written_back..], &batches.friction[written_back..]);
+        let (lanes, friction) = (
+            &batches.batches[written_back..],
+            &batches.friction[written_back..],
+        );
         for (j, (b, f)) in lanes.iter().zip(friction).enumerate() {
             // A level's contacts sit all over the manifold list: fetched a batch ahead.
             if let Some(next) = lanes.get(j + PREFETCH_AHEAD) {
@@ -74,11 +83,20 @@ pub(super) fn store_impulses(world: &mut PhysicsWorld, batches: &ContactBatches,
 /// One constraint's results into its manifold.
 fn store_constraint(c: &ContactConstraint, manifolds: &mut [Manifold]) {
     let (mut impulses, mut approach) = ([0.0; MAX_POINTS], [0.0; MAX_POINTS]);
-    for ((i, a), p) in impulses.iter_mut().zip(&mut approach).zip(&c.points[..c.len]) {
+    for ((i, a), p) in impulses
+        .iter_mut()
+        .zip(&mut approach)
+        .zip(&c.points[..c.len])
+    {
         (*i, *a) = (p.normal_impulse, p.relative_velocity);
     }
     let shares = friction_shares(c);
-    store_manifold(&mut manifolds[c.manifold as usize], &impulses, &approach, shares);
+    store_manifold(
+        &mut manifolds[c.manifold as usize],
+        &impulses,
+        &approach,
+        shares,
+    );
 }
 
 /// A manifold's points' normal impulses, approach (relative normal) velocities and
