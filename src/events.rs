@@ -274,6 +274,12 @@ pub fn report_collisions(
     let world = &mut *world;
     let ReportScratch { now, ends, spare } = &mut *scratch;
     now.clear();
+    // No collider asks for events and none was touching: nothing to report, and no
+    // walk over every manifold (0.27 ms a step on the 5,050-cube pyramid). The same
+    // early return as below, found without the walk.
+    if world.touching.is_empty() && !world.colliders.iter().any(|c| c.filter.events) {
+        return;
+    }
     // A pair that touched stays touching while a point is within the slop: a landing
     // that rebounds a millimetre for a step is one collision, not three events.
     // The slop is a quarter of the pair's margin: 5 mm, less for bodies under 4 cm.
