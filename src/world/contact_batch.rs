@@ -141,7 +141,7 @@ impl PointLanes {
     }
 
     /// Lane `l`'s accumulated impulses into its point.
-    fn write_back(&self, l: usize, p: &mut ConstraintPoint) {
+    pub(crate) fn write_back(&self, l: usize, p: &mut ConstraintPoint) {
         p.normal_impulse = self.normal_impulse.as_array_ref()[l];
         p.max_normal_impulse = self.max_normal_impulse.as_array_ref()[l];
         p.relative_velocity = self.relative_velocity.as_array_ref()[l];

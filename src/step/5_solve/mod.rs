@@ -12,13 +12,13 @@ mod joint_direct;
 #[cfg(test)]
 mod joint_direct_tests;
 mod joint_forces;
+#[cfg(test)]
+mod prepare_tests;
 mod split;
 #[cfg(test)]
 mod split_tests;
 mod steps;
 mod stiffness;
-#[cfg(test)]
-mod prepare_tests;
 mod store;
 mod survey;
 mod wide;
@@ -44,8 +44,8 @@ use joint::{solve_joints, warm_start_joints};
 use joint_direct::JointSystem;
 use joint_forces::store_joint_forces;
 pub(crate) use steps::{Pass, solve_steps, warm_start_steps};
-use stiffness::{HELD_MAX_RATE, JOINT_DAMPING_RATIO, MAX_TENSION_TURN, joint_hertz, tension_omega};
 pub use stiffness::substeps_for;
+use stiffness::{HELD_MAX_RATE, JOINT_DAMPING_RATIO, MAX_TENSION_TURN, joint_hertz, tension_omega};
 use store::store_impulses;
 use survey::{PerBody, survey_contacts};
 
@@ -239,8 +239,7 @@ fn run_stage(
             let per_body = (&*scratch.per_body.overlaps, &*scratch.per_body.heaviest);
             let threads = bevy::tasks::ComputeTaskPool::try_get().map_or(1, |p| p.thread_num());
             let split = threads >= 2 && m.len() >= PARALLEL_PREPARE_FROM;
-            let found =
-                prepare_constraints(m, c, s, bodies, stiffness, per_body, out, arms, split);
+            let found = prepare_constraints(m, c, s, bodies, stiffness, per_body, out, arms, split);
             scratch.fixed_constraints = found.fixed;
             debug_assert!(
                 world.constraints[scratch.fixed_constraints..]
@@ -270,7 +269,9 @@ fn run_stage(
             scratch.bounce = found.bounce;
             let fixed = scratch.fixed_constraints;
             let (constraints, keys) = (&world.constraints, &world.contact_keys);
-            scratch.batches.build_keyed(constraints, keys, bodies, fixed);
+            scratch
+                .batches
+                .build_keyed(constraints, keys, bodies, fixed);
             scratch.measured = false;
             let batches = &scratch.batches;
             let worth = |steps| split::worth_splitting(batches, &steps);

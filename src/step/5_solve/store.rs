@@ -67,8 +67,27 @@ pub(super) fn store_impulses(
                 }
                 let t = [lane(&f.tangent_impulse[0]), lane(&f.tangent_impulse[1])];
                 let tangent = b.tangents[0].lane(l) * t[0] + b.tangents[1].lane(l) * t[1];
+                // What the constraint, written back, would have stored (debug builds).
+                #[cfg(debug_assertions)]
+                let expected = {
+                    let mut c = constraints[ci as usize];
+                    c.anchor.tangent_impulse = Vec2::from(t);
+                    c.anchor.twist_impulse = lane(&f.twist_impulse);
+                    for (p, lanes) in c.points[..c.len].iter_mut().zip(points) {
+                        lanes.write_back(l, p);
+                    }
+                    let mut expected = *m;
+                    store_into(&c, &mut expected);
+                    expected
+                };
                 let shares = shares_of(&impulses[..m.len], tangent, lane(&f.twist_impulse));
                 store_manifold(m, &impulses, &approach, shares);
+                #[cfg(debug_assertions)]
+                debug_assert!(
+                    format!("{:?}", (m.previous_load, m.points()))
+                        == format!("{:?}", (expected.previous_load, expected.points())),
+                    "a contact's lanes stored as its constraint would have been"
+                );
             }
         }
     }
@@ -82,6 +101,11 @@ pub(super) fn store_impulses(
 
 /// One constraint's results into its manifold.
 fn store_constraint(c: &ContactConstraint, manifolds: &mut [Manifold]) {
+    store_into(c, &mut manifolds[c.manifold as usize]);
+}
+
+/// One constraint's results into manifold `m` (its own).
+fn store_into(c: &ContactConstraint, m: &mut Manifold) {
     let (mut impulses, mut approach) = ([0.0; MAX_POINTS], [0.0; MAX_POINTS]);
     for ((i, a), p) in impulses
         .iter_mut()
@@ -91,12 +115,7 @@ fn store_constraint(c: &ContactConstraint, manifolds: &mut [Manifold]) {
         (*i, *a) = (p.normal_impulse, p.relative_velocity);
     }
     let shares = friction_shares(c);
-    store_manifold(
-        &mut manifolds[c.manifold as usize],
-        &impulses,
-        &approach,
-        shares,
-    );
+    store_manifold(m, &impulses, &approach, shares);
 }
 
 /// A manifold's points' normal impulses, approach (relative normal) velocities and
