@@ -34,7 +34,8 @@ use crate::world::{
     ContactBatches, ContactParams, PhysicsWorld, STATIC, SolveWork, is_isotropic, world_inv_inertia,
 };
 
-pub use contact::{PARALLEL_PREPARE_FROM, prepare_constraints, refresh_rows, sum_impulses};
+use contact::PARALLEL_PREPARE_FROM;
+pub use contact::{prepare_constraints, refresh_rows};
 pub use continuous::sweep_against_fixed;
 use crew::{Crew, StopOnDrop};
 pub use iterate::{apply_restitution, stop_approach};
@@ -47,6 +48,7 @@ pub(crate) use steps::{Pass, solve_steps, warm_start_steps};
 pub use stiffness::substeps_for;
 use stiffness::{HELD_MAX_RATE, JOINT_DAMPING_RATIO, MAX_TENSION_TURN, joint_hertz, tension_omega};
 use store::store_impulses;
+pub use store::sum_impulses;
 use survey::{PerBody, survey_contacts};
 
 /// The solver's stages in execution order. `PrepareContacts` runs once per step; the

@@ -7,10 +7,12 @@
 //! them when something bounces); the rest go from the lanes straight to their manifolds.
 //! Before, every batch was written back to its 648-byte constraint and then read from
 //! it again (100 pyramids: 1.0 and 1.1 ms a step).
+//!
+//! Also here: each point's share of its manifold's friction, and the running totals of
+//! the step's impulses for colliders that report them.
 
 use bevy::prelude::*;
 
-use super::contact::{friction_shares, shares_of};
 use crate::world::{
     ContactBatches, ContactConstraint, MAX_POINTS, Manifold, NO_CONTACT, PhysicsWorld, SolveStep,
     prefetch,
@@ -135,4 +137,47 @@ fn store_manifold(
         (mp.tangent_impulse, mp.twist_impulse) = share;
         mp.approach_speed = (-a).max(0.0);
     }
+}
+
+/// Adds each point's accumulated impulses (what one substep applied) to its manifold's
+/// totals for the step, for constraints that report them. Run after every substep but
+/// the last, and once after restitution for the last (whose impulse restitution and the
+/// final stop add to).
+pub fn sum_impulses(constraints: &[ContactConstraint], manifolds: &mut [Manifold]) {
+    for c in constraints.iter().filter(|c| c.report) {
+        let m = &mut manifolds[c.manifold as usize];
+        let shares = friction_shares(c);
+        for ((mp, p), share) in m.points_mut().iter_mut().zip(&c.points).zip(shares) {
+            mp.total_normal_impulse += p.normal_impulse;
+            mp.total_tangent_impulse += share.0;
+        }
+    }
+}
+
+/// Each point's share of its constraint's friction impulse (world frame, N·s) and twist
+/// impulse (N·m·s): its share of the normal impulse, or equal shares when none pushes.
+pub fn friction_shares(c: &ContactConstraint) -> [(Vec3, f32); MAX_POINTS] {
+    let mut impulses = [0.0; MAX_POINTS];
+    for (i, p) in impulses.iter_mut().zip(&c.points[..c.len]) {
+        *i = p.normal_impulse;
+    }
+    let t = c.anchor.tangent_impulse;
+    let tangent = c.tangent1 * t.x + c.tangent2 * t.y;
+    shares_of(&impulses[..c.len], tangent, c.anchor.twist_impulse)
+}
+
+/// [`friction_shares`] of the points' normal impulses `impulses`, the friction impulse
+/// `tangent` (world frame) and the twist impulse `twist`.
+fn shares_of(impulses: &[f32], tangent: Vec3, twist: f32) -> [(Vec3, f32); MAX_POINTS] {
+    let total = impulses.iter().sum::<f32>();
+    let mut shares = [(Vec3::ZERO, 0.0); MAX_POINTS];
+    for (s, &i) in shares.iter_mut().zip(impulses) {
+        let w = if total > 0.0 {
+            i / total
+        } else {
+            1.0 / impulses.len() as f32
+        };
+        *s = (tangent * w, twist * w);
+    }
+    shares
 }
