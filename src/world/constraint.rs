@@ -43,6 +43,9 @@ pub(crate) struct ConstraintPoint {
     /// first pushes, its speed then: the approach speed restitution reverses (see
     /// `ContactConstraint::approach_gain`).
     pub relative_velocity: f32,
+    /// The separation the scalar pass last measured, m: the bodies move only between
+    /// substeps, so a substep's later passes read it instead of turning the anchors again.
+    pub separation: f32,
 }
 
 /// A manifold's friction, at one anchor: the points' centre, where a disc of two tangent

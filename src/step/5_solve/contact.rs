@@ -412,6 +412,7 @@ fn prepare_run(
                 twist_arm: plane_distance(p.point - mid, m.normal),
                 max_normal_impulse: 0.0,
                 relative_velocity: 0.0,
+                separation: 0.0,
             };
             cp.relative_velocity = row_velocity(&sa, &sb, m.normal, &normal_row, spin);
         }

@@ -135,14 +135,16 @@ fn warm_start_one(bodies: &mut [SolverBody], c: &ContactConstraint) {
 /// updated normal impulses.
 /// Accumulated impulses are clamped, never increments. Speculative points (s > 0) may
 /// close their gap, not more. Impulses act at the start-of-step anchors; the separation
-/// follows the anchors as the bodies move and turn.
+/// follows the anchors as the bodies move and turn. `measure`: the bodies moved since the
+/// separations were last measured (as for [`solve_batches`](super::wide::solve_batches));
+/// else the pass reads the ones it stored, the same bits.
 pub fn solve_listed(
     bodies: &mut [SolverBody],
     constraints: &mut [ContactConstraint],
     listed: &[u32],
     arms: &[RollingArms],
     h: f32,
-    use_bias: bool,
+    (use_bias, measure): (bool, bool),
 ) {
     let inv_h = 1.0 / h;
     // The contacts without a rolling motion in a loop that calls nothing, then the few
@@ -150,14 +152,14 @@ pub fn solve_listed(
     for &i in listed {
         let c = &mut constraints[i as usize];
         if !c.anchoring.rolls() {
-            solve_one::<false>(bodies, c, arms, inv_h, use_bias);
+            solve_one::<false>(bodies, c, arms, inv_h, (use_bias, measure));
         }
     }
     if !arms.is_empty() {
         for &i in listed {
             let c = &mut constraints[i as usize];
             if c.anchoring.rolls() {
-                solve_rolling(bodies, c, arms, inv_h, use_bias);
+                solve_rolling(bodies, c, arms, inv_h, (use_bias, measure));
             }
         }
     }
@@ -172,9 +174,9 @@ fn solve_rolling(
     c: &mut ContactConstraint,
     arms: &[RollingArms],
     inv_h: f32,
-    use_bias: bool,
+    flags: (bool, bool),
 ) {
-    solve_one::<true>(bodies, c, arms, inv_h, use_bias);
+    solve_one::<true>(bodies, c, arms, inv_h, flags);
 }
 
 /// One contact's pass (see [`solve`]); `ROLLS`: it has a rolling motion.
@@ -184,7 +186,7 @@ fn solve_one<const ROLLS: bool>(
     c: &mut ContactConstraint,
     arms: &[RollingArms],
     inv_h: f32,
-    use_bias: bool,
+    (use_bias, measure): (bool, bool),
 ) {
     {
         let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
@@ -197,16 +199,21 @@ fn solve_one<const ROLLS: bool>(
         // of their sum, at most NORMAL_SWEEPS times; not when a row is held at the
         // push-out cap (a shared rate limit: converged, the shares add up).
         let sweeps = if c.len > 1 { NORMAL_SWEEPS } else { 1 };
-        // Each point's separation now: the same in every sweep (positions move only
-        // between substeps), so measured once.
+        // Each point's separation now: the same in every sweep and pass until the
+        // bodies move (positions move only between substeps), so measured once.
+        if measure {
+            for p in &mut c.points[..c.len] {
+                let (ca, cb) = if ROLLS {
+                    anchoring.anchors(p, &a, &b, arms)
+                } else {
+                    anchoring.plain_anchors(p, &a, &b)
+                };
+                p.separation = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
+            }
+        }
         let mut separation = [0.0f32; MAX_POINTS];
         for (s, p) in separation.iter_mut().zip(&c.points[..c.len]) {
-            let (ca, cb) = if ROLLS {
-                anchoring.anchors(p, &a, &b, arms)
-            } else {
-                anchoring.plain_anchors(p, &a, &b)
-            };
-            *s = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
+            *s = p.separation;
         }
         for _ in 0..sweeps {
             let (mut largest, mut total, mut capped) = (0.0f32, 0.0f32, false);

@@ -334,7 +334,7 @@ pub(crate) fn solve_steps(
         SolveStep::Scalar(c) => {
             // SAFETY: the helper waits while the leader runs anything but a split level.
             let bodies = unsafe { view.whole() };
-            solve_listed(bodies, constraints, &[*c], arms, h, use_bias);
+            solve_listed(bodies, constraints, &[*c], arms, h, (use_bias, measure));
         }
     };
     let view = SharedBodies::new(bodies);

@@ -68,7 +68,9 @@ pub(crate) fn solve_steps(
                 work.sweeps += u64::from(sweeps);
                 work.batches += list.len() as u64;
             }
-            SolveStep::Scalar(c) => solve_listed(bodies, constraints, &[*c], arms, h, use_bias),
+            SolveStep::Scalar(c) => {
+                solve_listed(bodies, constraints, &[*c], arms, h, (use_bias, measure));
+            }
         }
     }
     work
