@@ -196,6 +196,18 @@ impl Q4 {
         let across = b.scale(v.dot(b) * two);
         along.add(across).add(b.cross(v).scale(self.w * two))
     }
+
+    /// `q.conjugate() * v` as glam computes it: the inverse rotation of a unit `q`.
+    #[inline(always)]
+    pub fn rotate_back(self, v: V3) -> V3 {
+        let conjugate = Self {
+            x: neg(self.x),
+            y: neg(self.y),
+            z: neg(self.z),
+            w: self.w,
+        };
+        conjugate.rotate(v)
+    }
 }
 
 #[cfg(test)]
@@ -221,6 +233,8 @@ mod tests {
                 assert_eq!(dot[l].to_bits(), a[l].dot(b[l]).to_bits());
                 assert_eq!(cross.lane(l), a[l].cross(b[l]));
                 assert_eq!(rotated.lane(l), q[l] * b[l]);
+                let back = Q4::gather(q).rotate_back(lb);
+                assert_eq!(back.lane(l), q[l].conjugate() * b[l]);
             }
         }
     }

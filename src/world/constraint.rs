@@ -304,6 +304,17 @@ impl Anchoring {
         (ca, cb)
     }
 
+    /// The normal `n` in each body's start-of-step frame, for a contact without a rolling
+    /// motion: n·(dq r) = (dq⁻¹ n)·r, so a point's separation is then two dot products
+    /// (`iterate::solve_one`, the batched pass the same), not two rotations of its anchors.
+    /// A side whose anchor does not turn keeps `n`.
+    #[inline(always)]
+    pub(crate) fn normal_images(&self, n: Vec3, a: &SolverBody, b: &SolverBody) -> (Vec3, Vec3) {
+        let na = if self.turn[0] { a.dq.conjugate() * n } else { n };
+        let nb = if self.turn[1] { b.dq.conjugate() * n } else { n };
+        (na, nb)
+    }
+
     /// [`anchors`](Self::anchors) under a rolling motion: a side that turns takes only
     /// its body's swing off the axis it rolls about; a side that stays is carried by the
     /// arm's turn. Out of the solver loops' line (one copy of each loop, not two).

@@ -201,14 +201,16 @@ fn solve_one<const ROLLS: bool>(
         let sweeps = if c.len > 1 { NORMAL_SWEEPS } else { 1 };
         // Each point's separation now: the same in every sweep and pass until the
         // bodies move (positions move only between substeps), so measured once.
-        if measure {
+        if measure && ROLLS {
             for p in &mut c.points[..c.len] {
-                let (ca, cb) = if ROLLS {
-                    anchoring.anchors(p, &a, &b, arms)
-                } else {
-                    anchoring.plain_anchors(p, &a, &b)
-                };
+                let (ca, cb) = anchoring.anchors(p, &a, &b, arms);
                 p.separation = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
+            }
+        } else if measure {
+            let moved = c.normal.dot(dp);
+            let (na, nb) = anchoring.normal_images(c.normal, &a, &b);
+            for p in &mut c.points[..c.len] {
+                p.separation = moved + nb.dot(p.rb) - na.dot(p.ra) + p.adjusted_separation;
             }
         }
         let mut separation = [0.0f32; MAX_POINTS];

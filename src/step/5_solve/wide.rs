@@ -295,11 +295,13 @@ fn measure_batch(
         PoseLanes::gather(bodies, c.a),
         PoseLanes::gather(bodies, c.b),
     );
-    let dp = b.dp.sub(a.dp);
+    // n·(q r) = (q⁻¹ n)·r: the normal turned back into each body's start-of-step frame
+    // once, then a dot product a point (see `Anchoring::normal_images`).
+    let moved = c.normal.dot(b.dp.sub(a.dp));
+    let na = V3::select(c.turn[0], a.dq.rotate_back(c.normal), c.normal);
+    let nb = V3::select(c.turn[1], b.dq.rotate_back(c.normal), c.normal);
     for (p, r) in point.iter_mut().zip(anchor) {
-        let ca = V3::select(c.turn[0], a.dq.rotate(r.ra), r.ra);
-        let cb = V3::select(c.turn[1], b.dq.rotate(r.rb), r.rb);
-        p.separation = c.normal.dot(dp.add(cb).sub(ca)) + p.adjusted_separation;
+        p.separation = moved + nb.dot(r.rb) - na.dot(r.ra) + p.adjusted_separation;
     }
 }
 
