@@ -103,16 +103,17 @@ pub fn warm_start_listed(
 #[inline(always)]
 fn warm_start_one(bodies: &mut [SolverBody], c: &ContactConstraint) {
     let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
+    // The normal impulses all at once: Σ λ·n on the bodies, and their moments
+    // Σ λ (r × n) through each inverse inertia once (the same impulse as point by point,
+    // with a third of the arithmetic; the rounding differs).
+    let (mut total, mut ra, mut rb) = (0.0, Vec3::ZERO, Vec3::ZERO);
     for p in &c.points[..c.len] {
-        apply_normal(
-            &mut a,
-            &mut b,
-            c.normal,
-            &p.normal_row,
-            p.normal_impulse,
-            c.spin,
-        );
+        total += p.normal_impulse;
+        ra += p.normal_row.ra * p.normal_impulse;
+        rb += p.normal_row.rb * p.normal_impulse;
     }
+    let moments = [a.inv_inertia * ra, b.inv_inertia * rb];
+    apply(&mut a, &mut b, c.normal * total, moments, c.spin);
     let f = &c.anchor;
     let tangents = [c.tangent1, c.tangent2];
     apply_tangent(

@@ -193,10 +193,16 @@ fn warm_start_any(
             BodyLanes::gather(bodies, c.b),
         );
         let range = c.range();
+        // The normal impulses all at once (see `iterate::warm_start_one`).
+        let (mut total, mut ra, mut rb) = (F4::ZERO, V3::ZERO, V3::ZERO);
         for p in &points[range.start - base..range.end - base] {
-            let normal = RowLanes::normal(&c.inv_inertia, p);
-            apply_normal(&mut a, &mut b, c.normal, &normal, p.normal_impulse);
+            total = total + p.normal_impulse;
+            ra = ra.add(p.normal_ra.scale(p.normal_impulse));
+            rb = rb.add(p.normal_rb.scale(p.normal_impulse));
         }
+        let p = c.normal.scale(total);
+        a.push(p, ra.scale(c.inv_inertia[0]), false);
+        b.push(p, rb.scale(c.inv_inertia[1]), true);
         let tangent = anchor_rows(c);
         apply_tangent(&mut a, &mut b, &c.tangents, &tangent, f.tangent_impulse);
         apply_twist(&mut a, &mut b, &c.inv_inertia, c.normal, f.twist_impulse);
