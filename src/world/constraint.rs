@@ -288,12 +288,10 @@ impl Anchoring {
         self.plain_anchors(p, a, b)
     }
 
-    /// [`anchors`](Self::anchors) of a contact known to have no rolling motion: no call
-    /// at all, so a solver loop built on it keeps its bodies in registers (a possible
-    /// call, even a cold one, made the loop spill them: the contact solve ran 60 %
-    /// slower on 35 bouncing balls).
+    /// [`anchors`](Self::anchors) of a contact known to have no rolling motion. (The
+    /// passes no longer turn anchors: they measure with [`normal_images`](Self::normal_images).)
     #[inline(always)]
-    pub(crate) fn plain_anchors(
+    fn plain_anchors(
         &self,
         p: &ConstraintPoint,
         a: &SolverBody,

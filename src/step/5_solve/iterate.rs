@@ -202,16 +202,28 @@ fn solve_one<const ROLLS: bool>(
         let sweeps = if c.len > 1 { NORMAL_SWEEPS } else { 1 };
         // Each point's separation now: the same in every sweep and pass until the
         // bodies move (positions move only between substeps), so measured once.
-        if measure && ROLLS {
-            for p in &mut c.points[..c.len] {
-                let (ca, cb) = anchoring.anchors(p, &a, &b, arms);
-                p.separation = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
+        // (Debug builds measure every pass, and check that the stored ones are what
+        // measuring gives.)
+        if measure || cfg!(debug_assertions) {
+            let mut now = [0.0f32; MAX_POINTS];
+            if ROLLS {
+                for (s, p) in now.iter_mut().zip(&c.points[..c.len]) {
+                    let (ca, cb) = anchoring.anchors(p, &a, &b, arms);
+                    *s = c.normal.dot(dp + cb - ca) + p.adjusted_separation;
+                }
+            } else {
+                let moved = c.normal.dot(dp);
+                let (na, nb) = anchoring.normal_images(c.normal, &a, &b);
+                for (s, p) in now.iter_mut().zip(&c.points[..c.len]) {
+                    *s = moved + nb.dot(p.rb) - na.dot(p.ra) + p.adjusted_separation;
+                }
             }
-        } else if measure {
-            let moved = c.normal.dot(dp);
-            let (na, nb) = anchoring.normal_images(c.normal, &a, &b);
-            for p in &mut c.points[..c.len] {
-                p.separation = moved + nb.dot(p.rb) - na.dot(p.ra) + p.adjusted_separation;
+            for (p, s) in c.points[..c.len].iter_mut().zip(now) {
+                debug_assert!(
+                    measure || p.separation.to_bits() == s.to_bits(),
+                    "a stored separation is stale: the bodies moved since it was measured"
+                );
+                p.separation = s;
             }
         }
         let mut separation = [0.0f32; MAX_POINTS];
