@@ -23,6 +23,29 @@ pub struct PairOrderScratch {
     packed: Vec<u64>,
     /// The radix sort's second buffer.
     spare: Vec<u64>,
+    /// Last step's call, to answer a repeat of it without sorting.
+    last: LastOrder,
+}
+
+/// One call of [`canonical_order`]: what the order depends on (each collider's key and
+/// whether it is fixed, and the pairs as they came) and the order it gave. A settled
+/// scene's tree yields the same pairs in the same order step after step (the 4,096-ball
+/// pit from about step 60 on), and sorting them again was 4.5 % of its step.
+#[derive(Default)]
+struct LastOrder {
+    colliders: Vec<(u64, bool)>,
+    input: Vec<(u32, u32)>,
+    output: Vec<(u32, u32)>,
+}
+
+impl LastOrder {
+    /// Whether this call repeats the last one.
+    fn repeats(&self, colliders: &[ColliderEntry], pairs: &[(u32, u32)]) -> bool {
+        self.input == pairs
+            && self.colliders.len() == colliders.len()
+            && (self.colliders.iter().zip(colliders))
+                .all(|(&k, c)| k == (c.key, c.body == STATIC))
+    }
 }
 
 /// Marks a fixed (static or asleep) collider in [`PairOrderScratch::rank`].
@@ -52,7 +75,16 @@ pub fn canonical_order(
         rank,
         packed,
         spare,
+        last,
     } = scratch;
+    if last.repeats(colliders, pairs) {
+        pairs.copy_from_slice(&last.output);
+        return;
+    }
+    last.input.clear();
+    last.input.extend_from_slice(pairs);
+    last.colliders.clear();
+    (last.colliders).extend(colliders.iter().map(|c| (c.key, c.body == STATIC)));
     by_key.clear();
     by_key.extend(colliders.iter().enumerate().map(|(i, c)| (c.key, i as u32)));
     // Usually sorted already, or nearly (the ECS's order follows spawning): linear then.
@@ -82,6 +114,8 @@ pub fn canonical_order(
         let (lo, hi) = ((k >> bits) & mask, k & mask);
         *p = (by_key[lo as usize].1, by_key[hi as usize].1);
     }
+    last.output.clear();
+    last.output.extend_from_slice(pairs);
 }
 
 /// One pair as a sortable integer of 2·`bits` + 1 bits: the top one set unless a side is
@@ -253,5 +287,26 @@ mod tests {
         }
         canonical_order(&colliders, &mut pairs, &mut scratch);
         assert_eq!(pairs, first);
+    }
+
+    #[test]
+    fn a_repeated_call_gives_the_last_order_and_a_changed_collider_a_new_one() {
+        let mut rnd = Rnd(11);
+        let mut scratch = PairOrderScratch::default();
+        let (mut colliders, pairs) = random_input(&mut rnd, 300, 2_000);
+        for round in 0..4 {
+            // Round 1 repeats round 0; then a key changes, then whether one is fixed.
+            if round == 2 {
+                colliders[5].key = u64::MAX - 1;
+            }
+            if round == 3 {
+                let c = &mut colliders[7];
+                c.body = if c.body == STATIC { 0 } else { STATIC };
+            }
+            let (mut expected, mut fast) = (pairs.clone(), pairs.clone());
+            reference_order(&colliders, &mut expected);
+            canonical_order(&colliders, &mut fast, &mut scratch);
+            assert_eq!(fast, expected, "round {round}");
+        }
     }
 }
