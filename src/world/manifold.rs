@@ -48,6 +48,9 @@ pub(crate) struct Manifold {
     /// Which part of the pair this is: 0, or for a pair with a triangle mesh or
     /// heightfield the touching triangle's index (a pair can have one per triangle).
     pub sub: u32,
+    /// The pair's place in its step's candidate pairs (`PhysicsWorld::pairs`), where the
+    /// next step looks it up (`WarmStartCache::find_at`).
+    pub pair: u32,
     /// The points' normal impulses summed the step before the one they warm-start from
     /// (two steps back when prepared; 0 for a pair that is new since), N·s a substep:
     /// with last step's sum, what tells a load that stays from an impact's impulse,

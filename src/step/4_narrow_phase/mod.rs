@@ -78,6 +78,8 @@ pub fn collide_pairs(
         reused: 0,
         full: false,
     };
+    let entities = world.colliders.iter().map(|c| c.entity);
+    world.impulse_cache.match_pairs(&world.pairs, entities);
     let threads = bevy::tasks::ComputeTaskPool::try_get().map_or(1, |p| p.thread_num());
     let mut split = false;
     let before = (own.sensor_overlaps.len(), own.wake.len());
@@ -92,9 +94,9 @@ pub fn collide_pairs(
         let settings = &*settings;
         bevy::tasks::ComputeTaskPool::get().scope(|scope| {
             let own = &mut own;
-            scope.spawn(async move { collide_run(shared, settings, speeds, first, 0, own) });
+            scope.spawn(async move { collide_run(shared, settings, speeds, (first, 0), 0, own) });
             for ((&(start, next), end), run) in cuts.iter().zip(ends).zip(runs.iter_mut()) {
-                let pairs = &shared.pairs[start..end];
+                let pairs = (&shared.pairs[start..end], start);
                 scope.spawn(async move { collide_run(shared, settings, speeds, pairs, next, run) });
             }
         });
@@ -118,7 +120,7 @@ pub fn collide_pairs(
         }
     }
     if !split {
-        collide_run(world, &settings, speeds, &world.pairs, 0, &mut own);
+        collide_run(world, &settings, speeds, (&world.pairs, 0), 0, &mut own);
     }
     world.reused_manifolds = own.reused;
     let full = own.full;
@@ -167,18 +169,19 @@ fn run_cuts(pairs: &[(u32, u32)], cache: &WarmStartCache, runs: usize) -> Vec<(u
     cuts
 }
 
-/// The narrow phase of a run of pairs, into `out`, looking the first pair up in the
-/// warm-start cache at place `next`; `speeds`: each collider's [`closing_speed`], m/s.
+/// The narrow phase of a run of pairs (the first at place `start` of the step's pairs),
+/// into `out`, looking the first pair up in the warm-start cache at place `next`;
+/// `speeds`: each collider's [`closing_speed`], m/s.
 fn collide_run(
     world: &PhysicsWorld,
     settings: &SolverSettings,
     speeds: &[f32],
-    pairs: &[(u32, u32)],
+    (pairs, start): (&[(u32, u32)], usize),
     mut next: usize,
     out: &mut Found,
 ) {
     let dt = world.dt;
-    for &(ia, ib) in pairs {
+    for (place, &(ia, ib)) in (start as u32..).zip(pairs) {
         if out.manifolds.len() == MAX_MANIFOLDS_PER_STEP {
             out.full = true;
             break;
@@ -231,6 +234,7 @@ fn collide_run(
             (entity(m.a), entity(m.b), m.sub)
         };
         let manifolds = &mut out.manifolds;
+        let before = manifolds.len();
         // Whether the pair has a manifold (a cell: `take` sets it, and so does reuse).
         let found = std::cell::Cell::new(false);
         // The pair's material.
@@ -256,11 +260,11 @@ fn collide_run(
         // impulses with it).
         if has_mesh(&a.shape, &b.shape) {
             collide_each(a, ia, b, ib, cutoff, &mut |m| {
-                let warm = cache.find(&key(&m), &mut next);
+                let warm = cache.find_at(&key(&m), place, &mut next);
                 take(m, warm, manifolds);
             });
         } else if reuse::reusable(a, b) {
-            let cached = cache.find(&(a.entity, b.entity, 0), &mut next);
+            let cached = cache.find_at(&(a.entity, b.entity, 0), place, &mut next);
             // (The loop's first check leaves room for one more manifold.)
             let limits = (margin, cutoff);
             let moved =
@@ -274,8 +278,11 @@ fn collide_run(
                 take(m, cached, manifolds);
             }
         } else if let Some(m) = collide(a, ia, b, ib, cutoff) {
-            let warm = cache.find(&key(&m), &mut next);
+            let warm = cache.find_at(&key(&m), place, &mut next);
             take(m, warm, manifolds);
+        }
+        for m in &mut manifolds[before..] {
+            m.pair = place;
         }
         if found.get()
             && let Some(e) = wake
@@ -355,7 +362,12 @@ mod tests {
         // prepare would, so the runs below warm-start from them.
         let mut world = app.world_mut().resource_mut::<PhysicsWorld>();
         let mut last = world.manifolds.clone();
+        let world = &mut *world;
         world.impulse_cache.take_over(&mut last);
+        // The pairs are the step's own: the lookups take the repeated pairs' path.
+        let entities = world.colliders.iter().map(|c| c.entity);
+        world.impulse_cache.match_pairs(&world.pairs, entities);
+        assert!(world.impulse_cache.repeats());
         let world = app.world().resource::<PhysicsWorld>();
         let settings = app.world().resource::<SolverSettings>();
         assert!(world.pairs.len() > 500, "{} pairs", world.pairs.len());
@@ -365,7 +377,7 @@ mod tests {
             .map(|c| closing_speed(world, c))
             .collect();
         let mut whole = Found::default();
-        collide_run(world, settings, &speeds, &world.pairs, 0, &mut whole);
+        collide_run(world, settings, &speeds, (&world.pairs, 0), 0, &mut whole);
         assert!(whole.manifolds.len() > 100);
         let warm = whole.manifolds.iter().flat_map(|m| m.points());
         assert!(
@@ -374,9 +386,10 @@ mod tests {
         );
         for runs in [2, 3, 7] {
             let mut joined = Found::default();
-            for pairs in world.pairs.chunks(world.pairs.len().div_ceil(runs)) {
+            let size = world.pairs.len().div_ceil(runs);
+            for (k, pairs) in world.pairs.chunks(size).enumerate() {
                 let mut run = Found::default();
-                collide_run(world, settings, &speeds, pairs, 0, &mut run);
+                collide_run(world, settings, &speeds, (pairs, k * size), 0, &mut run);
                 joined.manifolds.extend(run.manifolds);
                 joined.wake.extend(run.wake);
             }

@@ -99,6 +99,8 @@ pub(super) fn store_impulses(
         (entity(m.a), entity(m.b), m.sub)
     };
     world.impulse_cache.index(&world.manifolds, key);
+    let entities = colliders.iter().map(|c| c.entity);
+    world.impulse_cache.remember_pairs(&world.pairs, entities);
 }
 
 /// One constraint's results into its manifold.
