@@ -184,7 +184,14 @@ impl ContactPass {
             let all: Vec<u32> = (0..constraints.len() as u32).collect();
             warm_start_listed(bodies, constraints, &all);
             solve_listed(bodies, constraints, &all, &[], h, (true, true));
-            solve_listed(bodies, constraints, &all[..self.fixed], &[], h, (true, false));
+            solve_listed(
+                bodies,
+                constraints,
+                &all[..self.fixed],
+                &[],
+                h,
+                (true, false),
+            );
         }
     }
 

@@ -291,12 +291,7 @@ impl Anchoring {
     /// [`anchors`](Self::anchors) of a contact known to have no rolling motion. (The
     /// passes no longer turn anchors: they measure with [`normal_images`](Self::normal_images).)
     #[inline(always)]
-    fn plain_anchors(
-        &self,
-        p: &ConstraintPoint,
-        a: &SolverBody,
-        b: &SolverBody,
-    ) -> (Vec3, Vec3) {
+    fn plain_anchors(&self, p: &ConstraintPoint, a: &SolverBody, b: &SolverBody) -> (Vec3, Vec3) {
         let ca = if self.turn[0] { a.dq * p.ra } else { p.ra };
         let cb = if self.turn[1] { b.dq * p.rb } else { p.rb };
         (ca, cb)
@@ -308,8 +303,16 @@ impl Anchoring {
     /// A side whose anchor does not turn keeps `n`.
     #[inline(always)]
     pub(crate) fn normal_images(&self, n: Vec3, a: &SolverBody, b: &SolverBody) -> (Vec3, Vec3) {
-        let na = if self.turn[0] { a.dq.conjugate() * n } else { n };
-        let nb = if self.turn[1] { b.dq.conjugate() * n } else { n };
+        let na = if self.turn[0] {
+            a.dq.conjugate() * n
+        } else {
+            n
+        };
+        let nb = if self.turn[1] {
+            b.dq.conjugate() * n
+        } else {
+            n
+        };
         (na, nb)
     }
 

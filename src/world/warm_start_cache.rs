@@ -88,7 +88,10 @@ impl WarmStartCache {
             && !self.indexed
             && self.last_pairs == pairs
             && self.last_entities.len() == entities.len()
-            && self.last_entities.iter().all(|&e| entities.next() == Some(e));
+            && self
+                .last_entities
+                .iter()
+                .all(|&e| entities.next() == Some(e));
     }
 
     /// [`Self::find`] for the manifold of candidate pair `pair` (its place in this
@@ -254,7 +257,12 @@ mod tests {
         let touching = |k: &u32| *k != 3 && *k != 7;
         let mut manifolds: Vec<Manifold> = (0..10)
             .filter(touching)
-            .map(|k| Manifold { a: k, b: k + 1, pair: k, ..default() })
+            .map(|k| Manifold {
+                a: k,
+                b: k + 1,
+                pair: k,
+                ..default()
+            })
             .collect();
         let look_up_all = |cache: &WarmStartCache| {
             let mut next = 0;
@@ -273,14 +281,22 @@ mod tests {
         cache.match_pairs(&pairs, entities());
         assert!(cache.repeats());
         assert_eq!(look_up_all(&cache), expected);
-        assert!(!cache.has_index(), "a pair without a manifold made the index");
+        assert!(
+            !cache.has_index(),
+            "a pair without a manifold made the index"
+        );
         // The same lookups when the pairs differ (one more pair, or a collider that is
         // another entity now): the index answers the same.
         for (other_pairs, other_entity) in [(pairs[..9].to_vec(), 11), (pairs.clone(), 5)] {
             let mut again = WarmStartCache::default();
             let mut manifolds: Vec<Manifold> = (0..10)
                 .filter(touching)
-                .map(|k| Manifold { a: k, b: k + 1, pair: k, ..default() })
+                .map(|k| Manifold {
+                    a: k,
+                    b: k + 1,
+                    pair: k,
+                    ..default()
+                })
                 .collect();
             again.index(&manifolds, key);
             again.remember_pairs(&pairs, entities());

@@ -43,8 +43,7 @@ impl LastOrder {
     fn repeats(&self, colliders: &[ColliderEntry], pairs: &[(u32, u32)]) -> bool {
         self.input == pairs
             && self.colliders.len() == colliders.len()
-            && (self.colliders.iter().zip(colliders))
-                .all(|(&k, c)| k == (c.key, c.body == STATIC))
+            && (self.colliders.iter().zip(colliders)).all(|(&k, c)| k == (c.key, c.body == STATIC))
     }
 }
 
