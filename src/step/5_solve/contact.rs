@@ -4,6 +4,7 @@
 
 use bevy::prelude::*;
 
+use super::push_out::PushOutShares;
 use super::stiffness::{contact_softness, load_ratio, pair_size};
 use crate::collider::Shape;
 use crate::world::{
@@ -101,28 +102,6 @@ pub(super) fn friction_anchor(
 /// against twist, m.
 fn plane_distance(d: Vec3, normal: Vec3) -> f32 {
     (d - normal * normal.dot(d)).length()
-}
-
-/// Overlap at spawn: a body buried in k others is pushed out by k contacts at once. If
-/// each could push at the full `max_push_out`, their pushes would add up along chains of
-/// bodies (300 boxes spawned at one point flew apart at 73 m/s). So each body's push-out
-/// is shared among its overlapping contacts: a contact may push at most
-/// `max_push_out / k^0.6` for the larger k of its two bodies. Measured on 300 boxes at
-/// one point in zero g, five different spawn orders: k^0.6 peaks at 2.1–2.7 m/s for a
-/// 3 m/s limit and parts the pile in 2.9 s; √k peaked at 3.8–4.0 m/s (chains of pushes
-/// still add up); 1/k was still parting it after 10 s. Resting contacts are barely
-/// overlapping and push far slower than any share, so they don't notice.
-pub const PUSH_OUT_SHARE_EXPONENT: f32 = 0.6;
-
-/// The fastest push-out one contact may drive, given how many overlapping contacts each
-/// of its bodies has (see [`PUSH_OUT_SHARE_EXPONENT`]).
-pub fn push_out_share(max_push_out: f32, overlaps_a: u32, overlaps_b: u32) -> f32 {
-    let k = overlaps_a.max(overlaps_b);
-    if k <= 1 {
-        // 1^0.6 is exactly 1: the same bits without the `powf` (most contacts).
-        return max_push_out;
-    }
-    max_push_out / (k as f32).powf(PUSH_OUT_SHARE_EXPONENT)
 }
 
 /// What [`prepare_constraints`] found out about the step's constraints while building
@@ -260,6 +239,7 @@ fn prepare_run(
         }
     };
     let anisotropic = |i: u32| i != STATIC && !is_isotropic(states[i as usize].inv_inertia);
+    let shares = PushOutShares::new(stiffness.max_push_out);
     // Closing or parting slower than gravity changes speed in two steps.
     let resting_speed = 2.0 * stiffness.gravity * stiffness.dt;
     let mut found = Prepared {
@@ -384,7 +364,7 @@ fn prepare_run(
             max_push: if ca.body == STATIC || cb.body == STATIC {
                 stiffness.max_push_out
             } else {
-                push_out_share(stiffness.max_push_out, count(ca.body), count(cb.body))
+                shares.get(count(ca.body), count(cb.body))
             },
             points: [ConstraintPoint::default(); MAX_POINTS],
             len: m.len,

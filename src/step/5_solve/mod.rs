@@ -14,6 +14,7 @@ mod joint_direct_tests;
 mod joint_forces;
 #[cfg(test)]
 mod prepare_tests;
+mod push_out;
 mod split;
 #[cfg(test)]
 mod split_tests;
