@@ -71,20 +71,76 @@ pub fn wanted_hertz(
             ratio: 1.0,
         };
     }
-    let (light, heavy) = pair_masses(lo, hi);
     let r = load_ratio(p, lo, hi, load_impulse);
     let base = if lo == 0.0 { 2.0 * p.hertz } else { p.hertz };
+    let needed = hertz_of(sag_omega_squared(p, (lo, hi), r, size, resting));
+    Wanted {
+        hertz: (base * r.sqrt()).max(needed),
+        needed,
+        ratio: r,
+    }
+}
+
+/// ω² that the sag rule asks of a contact whose load ratio is `r`, (rad/s)² (NaN or ∞
+/// where it asks nothing; see [`hertz_of`]). `inv_masses`: the pair's smaller and larger
+/// inverse mass, the larger not 0.
+fn sag_omega_squared(
+    p: &ContactParams,
+    inv_masses: (f32, f32),
+    r: f32,
+    size: f32,
+    resting: bool,
+) -> f32 {
+    let (light, heavy) = pair_masses(inv_masses.0, inv_masses.1);
     // The sag rule reads the load its impulses show only for a resting contact (an
     // impact's impulse looks like a huge load for one step, and would buy substeps for
     // nothing), and only up to STACK_LOAD: deep piles share their load and sag more.
     let shown = if resting { r.min(STACK_LOAD) } else { 1.0 };
     let resting_load = (heavy / light).max(shown);
-    let by_size = (resting_load * p.gravity / (p.max_sag * size)).sqrt() / TAU;
-    let needed = if by_size.is_finite() { by_size } else { 0.0 };
-    Wanted {
-        hertz: (base * r.sqrt()).max(needed),
-        needed,
-        ratio: r,
+    resting_load * p.gravity / (p.max_sag * size)
+}
+
+/// The frequency of an ω² from [`sag_omega_squared`], Hz; 0 where it is not finite.
+/// Non-decreasing in ω², so the largest of many is the frequency of the largest finite
+/// ω², one square root instead of one per contact ([`NeededHertz`]).
+fn hertz_of(omega_squared: f32) -> f32 {
+    let hertz = omega_squared.sqrt() / TAU;
+    if hertz.is_finite() { hertz } else { 0.0 }
+}
+
+/// Folds contacts' sag needs into the most any of them needs: `Wanted::needed` of the
+/// stiffest, in [`Self::hertz`], with one square root at the end.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NeededHertz {
+    /// The largest finite ω² seen, (rad/s)².
+    omega_squared: f32,
+}
+
+impl NeededHertz {
+    /// Adds a contact, with [`wanted_hertz`]'s arguments.
+    #[inline]
+    pub fn add(
+        &mut self,
+        p: &ContactParams,
+        (inv_mass_a, inv_mass_b): (f32, f32),
+        load_impulse: f32,
+        size: f32,
+        resting: bool,
+    ) {
+        let (lo, hi) = (inv_mass_a.min(inv_mass_b), inv_mass_a.max(inv_mass_b));
+        if hi == 0.0 {
+            return;
+        }
+        let r = load_ratio(p, lo, hi, load_impulse);
+        let w = sag_omega_squared(p, (lo, hi), r, size, resting);
+        if w.is_finite() {
+            self.omega_squared = self.omega_squared.max(w);
+        }
+    }
+
+    /// The most any contact added needs, Hz (0 for none).
+    pub fn hertz(&self) -> f32 {
+        hertz_of(self.omega_squared)
     }
 }
 
@@ -268,6 +324,33 @@ mod tests {
             max_push_out: 3.0,
             max_sag: 0.005,
         }
+    }
+
+    #[test]
+    fn the_folded_need_is_the_largest_contacts_need() {
+        // NeededHertz (one square root at the end) against the largest `needed` of
+        // wanted_hertz contact by contact: the same bits, for random pairs and the odd
+        // ones (two fixed sides, a size of 0, an impact).
+        let p = params(1.0 / 240.0);
+        let mut rng = crate::rng::Rnd(0x5eed_5a9);
+        for trial in 0..200 {
+            let mut folded = NeededHertz::default();
+            let mut largest = 0.0f32;
+            for k in 0..1 + trial % 7 {
+                let inv = |rng: &mut crate::rng::Rnd| match rng.unit() {
+                    u if u < 0.2 => 0.0,
+                    _ => 1.0 / rng.range(0.01, 1000.0),
+                };
+                let (ia, ib) = (inv(&mut rng), inv(&mut rng));
+                let load = rng.range(0.0, 5.0);
+                let size = if k == 3 { 0.0 } else { rng.range(0.001, 3.0) };
+                let resting = rng.unit() < 0.7;
+                folded.add(&p, (ia, ib), load, size, resting);
+                largest = largest.max(wanted_hertz(&p, ia, ib, load, size, resting).needed);
+            }
+            assert_eq!(folded.hertz().to_bits(), largest.to_bits(), "trial {trial}");
+        }
+        assert_eq!(NeededHertz::default().hertz(), 0.0);
     }
 
     #[test]

@@ -11,7 +11,7 @@
 use crate::world::{ContactParams, PhysicsWorld, STATIC};
 
 use super::contact::mass_of;
-use super::stiffness::{pair_size, wanted_hertz};
+use super::stiffness::{NeededHertz, pair_size};
 
 /// Per body, what the survey found (indexed like `PhysicsWorld::bodies`).
 #[derive(Default)]
@@ -59,7 +59,7 @@ pub(super) fn survey_contacts(
     };
     // Resting: closing or parting slower than gravity changes speed in two steps.
     let resting_speed = 2.0 * p.gravity * world.dt;
-    let mut stiffest = 0.0f32;
+    let mut stiffest = NeededHertz::default();
     let mut touch = |i: u32, states: &mut [crate::world::BodyState]| {
         if i != STATIC && !states[i as usize].in_contact {
             states[i as usize].in_contact = true;
@@ -99,7 +99,7 @@ pub(super) fn survey_contacts(
                 }
             };
             let resting = m.normal.dot(v(b) - v(a)).abs() <= resting_speed;
-            stiffest = stiffest.max(wanted_hertz(p, ima, imb, load, size, resting).needed);
+            stiffest.add(p, (ima, imb), load, size, resting);
         }
     }
     for j in &world.joints {
@@ -107,5 +107,5 @@ pub(super) fn survey_contacts(
         touch(j.b, states);
     }
     active.sort_unstable();
-    stiffest
+    stiffest.hertz()
 }
