@@ -79,7 +79,7 @@ pub fn find_pairs(
         let found = &mut scratch.found;
         world
             .fixed
-            .overlapping(c_min, c_max, margin, |f| found.push(f));
+            .touching(c_min, c_max, margin, |f| found.push(f));
         if world.pairs.len() + found.len() > cap {
             full = true;
             break;
