@@ -255,15 +255,24 @@ mod tests {
         let entities = || (0..11).map(entity);
         let key = |m: &Manifold| (entity(m.a), entity(m.b), m.sub);
         let touching = |k: &u32| *k != 3 && *k != 7;
-        let mut manifolds: Vec<Manifold> = (0..10)
-            .filter(touching)
-            .map(|k| Manifold {
-                a: k,
-                b: k + 1,
-                pair: k,
-                ..default()
-            })
-            .collect();
+        // The cache as last step's store leaves it: its manifolds indexed, its pairs
+        // remembered, taken over.
+        let last_step = || {
+            let mut manifolds: Vec<Manifold> = (0..10)
+                .filter(touching)
+                .map(|k| Manifold {
+                    a: k,
+                    b: k + 1,
+                    pair: k,
+                    ..default()
+                })
+                .collect();
+            let mut cache = WarmStartCache::default();
+            cache.index(&manifolds, key);
+            cache.remember_pairs(&pairs, entities());
+            cache.take_over(&mut manifolds);
+            cache
+        };
         let look_up_all = |cache: &WarmStartCache| {
             let mut next = 0;
             (0..10u32)
@@ -274,10 +283,7 @@ mod tests {
                 .collect::<Vec<_>>()
         };
         let expected: Vec<_> = (0..10).map(|k| touching(&k).then_some((k, k))).collect();
-        let mut cache = WarmStartCache::default();
-        cache.index(&manifolds, key);
-        cache.remember_pairs(&pairs, entities());
-        cache.take_over(&mut manifolds);
+        let mut cache = last_step();
         cache.match_pairs(&pairs, entities());
         assert!(cache.repeats());
         assert_eq!(look_up_all(&cache), expected);
@@ -285,22 +291,10 @@ mod tests {
             !cache.has_index(),
             "a pair without a manifold made the index"
         );
-        // The same lookups when the pairs differ (one more pair, or a collider that is
+        // The same lookups when the pairs differ (one fewer pair, or a collider that is
         // another entity now): the index answers the same.
         for (other_pairs, other_entity) in [(pairs[..9].to_vec(), 11), (pairs.clone(), 5)] {
-            let mut again = WarmStartCache::default();
-            let mut manifolds: Vec<Manifold> = (0..10)
-                .filter(touching)
-                .map(|k| Manifold {
-                    a: k,
-                    b: k + 1,
-                    pair: k,
-                    ..default()
-                })
-                .collect();
-            again.index(&manifolds, key);
-            again.remember_pairs(&pairs, entities());
-            again.take_over(&mut manifolds);
+            let mut again = last_step();
             let now = (0..11).map(|i| entity(if i == other_entity { 99 } else { i }));
             again.match_pairs(&other_pairs, now);
             assert!(!again.repeats());
