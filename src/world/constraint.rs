@@ -165,7 +165,50 @@ pub(crate) struct ContactConstraint {
     pub max_push: f32,
     pub points: [ConstraintPoint; MAX_POINTS],
     pub len: usize,
+    /// How the normal rows move each other (see [`normal_couplings`]), 1/kg.
+    pub coupling: [f32; COUPLINGS],
     pub anchor: FrictionAnchor,
+}
+
+/// Pairs of a manifold's points, j > k: the couplings a constraint keeps.
+pub(crate) const COUPLINGS: usize = MAX_POINTS * (MAX_POINTS - 1) / 2;
+
+/// Where the coupling of points j > k is kept.
+#[inline(always)]
+pub(crate) const fn coupling_index(j: usize, k: usize) -> usize {
+    j * (j - 1) / 2 + k
+}
+
+/// The couplings of a manifold's normal rows: for each pair of points j > k, how much a
+/// unit normal impulse at k changes the normal velocity at j, 1/kg,
+/// K_jk = 1/m_a + 1/m_b + (ra_j × n)·Ia⁻¹(ra_k × n) + (rb_j × n)·Ib⁻¹(rb_k × n)
+/// (the off-diagonal of the manifold's effective-mass matrix; a side that cannot turn
+/// has no angular term). With them a sweep over the points reads the bodies' velocities
+/// once and moves them once: point j's velocity after the impulses before it is its
+/// velocity before the sweep plus Σ K_jk·Δλ_k. Zero for pairs past `points`.
+pub(crate) fn normal_couplings(
+    points: &[ConstraintPoint],
+    linear: f32,
+    spin: [bool; 2],
+) -> [f32; COUPLINGS] {
+    let mut coupling = [0.0; COUPLINGS];
+    for j in 1..points.len() {
+        let rj = &points[j].normal_row;
+        for (k, pk) in points[..j].iter().enumerate() {
+            let a = if spin[0] {
+                rj.ra.dot(pk.normal_row.ia)
+            } else {
+                0.0
+            };
+            let b = if spin[1] {
+                rj.rb.dot(pk.normal_row.ib)
+            } else {
+                0.0
+            };
+            coupling[coupling_index(j, k)] = linear + (a + b);
+        }
+    }
+    coupling
 }
 
 /// The knobs of the solver's constraint preparation: stiffness, substep, and whether friction runs.

@@ -7,16 +7,16 @@
 use bevy::prelude::*;
 
 use super::{
-    ConstraintPoint, ContactConstraint, ContactKey, LANES, MAX_POINTS, NO_CONTACT, STATIC,
-    SolverBody, body,
+    COUPLINGS, ConstraintPoint, ContactConstraint, ContactKey, LANES, MAX_POINTS, NO_CONTACT,
+    STATIC, SolverBody, body,
 };
 use crate::math::lanes::{F4, V3};
 
 /// One point of each lane's contact; zeros past a contact's points. The normal row's
 /// lever arms are kept as prepared; their images under the inverse inertia (see
-/// [`AngularRow`](super::AngularRow)) are rebuilt in each pass (a scale by the batch's
-/// isotropic inertia costs less than loading them: the big scenes' constraints did not
-/// fit the cache).
+/// [`AngularRow`](super::AngularRow)) are not kept: a sweep sums its impulses' moments
+/// Σ Δλ·(r × n) and scales the sum by the batch's isotropic inertia once (loading them
+/// cost more: the big scenes' constraints did not fit the cache).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PointLanes {
     /// The normal row's lever arms ra × n and rb × n, m.
@@ -95,6 +95,8 @@ pub(crate) struct ContactBatch {
     pub max_push: F4,
     /// All-ones lanes whose contact has more than k points, per k.
     pub has: [F4; MAX_POINTS],
+    /// See [`ContactConstraint::coupling`], 1/kg.
+    pub coupling: [F4; COUPLINGS],
     /// The tangent rows' lever arms at the friction anchors (see
     /// [`FrictionAnchor`](super::FrictionAnchor)) as prepared: ra × t and rb × t for
     /// each tangent t, m.
@@ -181,6 +183,7 @@ impl ContactBatch {
             impulse_scale: F4::ZERO,
             max_push: F4::ZERO,
             has: [F4::ZERO; MAX_POINTS],
+            coupling: [F4::ZERO; COUPLINGS],
             tangent_ra: [V3::ZERO; 2],
             tangent_rb: [V3::ZERO; 2],
             tangent_mass: F4::ZERO,
@@ -217,6 +220,9 @@ impl ContactBatch {
             set(&mut b.mass_scale, l, c.softness.mass_scale);
             set(&mut b.impulse_scale, l, c.softness.impulse_scale);
             set(&mut b.max_push, l, c.max_push);
+            for (lanes, &k) in b.coupling.iter_mut().zip(&c.coupling) {
+                set(lanes, l, k);
+            }
             let f = &c.anchor;
             for (k, row) in f.tangent_rows.iter().enumerate() {
                 b.tangent_ra[k].set(l, row.ra);

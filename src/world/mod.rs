@@ -20,8 +20,9 @@ pub(crate) use batching::{
 };
 pub(crate) use body_view::{BodyView, Shared, SharedBodies};
 pub(crate) use constraint::{
-    Anchoring, AngularRow, ConstraintPoint, ContactConstraint, ContactParams, FrictionAnchor,
-    NO_ROLL, RollingArms, body, row_velocity, store,
+    Anchoring, AngularRow, COUPLINGS, ConstraintPoint, ContactConstraint, ContactParams,
+    FrictionAnchor, NO_ROLL, RollingArms, body, coupling_index, normal_couplings, row_velocity,
+    store,
 };
 pub(crate) use contact_batch::{AnchorLanes, ContactBatch, FrictionLanes, PointLanes};
 pub(crate) use fixed_set::FixedSet;

@@ -8,9 +8,9 @@ use super::push_out::PushOutShares;
 use super::stiffness::{contact_softness, load_ratio, pair_size};
 use crate::collider::Shape;
 use crate::world::{
-    Anchoring, AngularRow, BodyState, ColliderEntry, ConstraintPoint, ContactConstraint,
+    Anchoring, AngularRow, BodyState, COUPLINGS, ColliderEntry, ConstraintPoint, ContactConstraint,
     ContactKey, ContactParams, FrictionAnchor, MAX_POINTS, Manifold, NO_ROLL, RollingArms, STATIC,
-    SolverBody, body, is_isotropic, prefetch, row_velocity,
+    SolverBody, body, is_isotropic, normal_couplings, prefetch, row_velocity,
 };
 
 /// A turning sphere's centre from its body's centre of mass (zero when they coincide,
@@ -368,6 +368,7 @@ fn prepare_run(
             },
             points: [ConstraintPoint::default(); MAX_POINTS],
             len: m.len,
+            coupling: [0.0; COUPLINGS],
             anchor: FrictionAnchor::default(),
         };
         if (c.a == STATIC || c.b == STATIC) && found.fixed == mi {
@@ -396,6 +397,7 @@ fn prepare_run(
             };
             cp.relative_velocity = row_velocity(&sa, &sb, m.normal, &normal_row, spin);
         }
+        c.coupling = normal_couplings(&c.points[..m.len], linear, spin);
         c.anchor = friction_anchor(&sa, &sb, (mid - centre(ca), mid - centre(cb)), c, m.len);
         // Last step's friction, from the shares of the points that persist.
         let tangent = m.points().iter().map(|p| p.tangent_impulse).sum::<Vec3>();
@@ -442,6 +444,7 @@ pub fn refresh_rows(
             p.normal_row.ib = b.inv_inertia * p.normal_row.rb;
             p.normal_mass = mass_of(linear + p.normal_row.inv_mass(c.spin));
         }
+        c.coupling = normal_couplings(&c.points[..c.len], linear, c.spin);
         let anchor = if rolls {
             let n = c.len.max(1) as f32;
             (mid[0] / n, mid[1] / n)

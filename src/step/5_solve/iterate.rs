@@ -1,13 +1,16 @@
 //! The per-iteration contact passes: warm start, the Gauss–Seidel solve (soft or relaxed)
 //! and restitution. Each constraint loads its two bodies once and stores them once; each
 //! row uses the angular parts prepared in [`AngularRow`], and a body that cannot turn
-//! (static, or `LockRotation`) runs no angular terms at all.
+//! (static, or `LockRotation`) runs no angular terms at all. A sweep over a manifold's
+//! normal rows reads the bodies once and moves them once: the rows see each other's
+//! impulses through their couplings ([`normal_couplings`]): the same Gauss–Seidel sweep
+//! (up to rounding), with the bodies' velocities updated once a sweep, not once a point.
 
 use bevy::prelude::*;
 
 use crate::world::{
     AngularRow, ContactConstraint, FrictionAnchor, MAX_POINTS, RollingArms, SolverBody, body,
-    row_velocity, store,
+    coupling_index, normal_couplings, row_velocity, store,
 };
 
 /// Linear impulse `p` on b and −p on a, with the angular parts `ang_a`, `ang_b`
@@ -26,7 +29,7 @@ fn apply(a: &mut SolverBody, b: &mut SolverBody, p: Vec3, ang: [Vec3; 2], spin: 
 
 /// A normal impulse `dl` at one point.
 #[inline]
-fn apply_normal(
+pub(super) fn apply_normal(
     a: &mut SolverBody,
     b: &mut SolverBody,
     n: Vec3,
@@ -35,6 +38,27 @@ fn apply_normal(
     spin: [bool; 2],
 ) {
     apply(a, b, n * dl, [row.ia * dl, row.ib * dl], spin);
+}
+
+/// Normal impulses `dl` at a contact's points, all at once: Σ dl·n on the bodies, and
+/// their moments Σ dl (r × n) through each inverse inertia once (as the warm start
+/// applies them).
+#[inline(always)]
+fn apply_normals<const N: usize>(
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    c: &ContactConstraint,
+    dl: &[f32; MAX_POINTS],
+    spin: [bool; 2],
+) {
+    let (mut total, mut ra, mut rb) = (0.0, Vec3::ZERO, Vec3::ZERO);
+    for (p, &dl) in c.points[..N].iter().zip(dl) {
+        total += dl;
+        ra += p.normal_row.ra * dl;
+        rb += p.normal_row.rb * dl;
+    }
+    let moments = [a.inv_inertia * ra, b.inv_inertia * rb];
+    apply(a, b, c.normal * total, moments, spin);
 }
 
 /// A twist impulse `d` about the normal: +d on b, −d on a.
@@ -199,7 +223,6 @@ fn solve_one<const ROLLS: bool>(
         // impulses lopsided. Sweep again while a sweep moves them by more than NORMAL_TOL
         // of their sum, at most NORMAL_SWEEPS times; not when a row is held at the
         // push-out cap (a shared rate limit: converged, the shares add up).
-        let sweeps = if c.len > 1 { NORMAL_SWEEPS } else { 1 };
         // Each point's separation now: the same in every sweep and pass until the
         // bodies move (positions move only between substeps), so measured once.
         // (Debug builds measure every pass, and check that the stored ones are what
@@ -230,45 +253,19 @@ fn solve_one<const ROLLS: bool>(
         for (s, p) in separation.iter_mut().zip(&c.points[..c.len]) {
             *s = p.separation;
         }
-        for _ in 0..sweeps {
-            let (mut largest, mut total, mut capped) = (0.0f32, 0.0f32, false);
-            for (p, &s) in c.points[..c.len].iter_mut().zip(&separation) {
-                let (bias, mass_scale, impulse_scale) = if s > 0.0 {
-                    (s * inv_h, 1.0, 0.0)
-                } else if use_bias {
-                    let soft = c.softness;
-                    capped |= soft.bias_rate * s < -c.max_push;
-                    (
-                        (soft.bias_rate * s).max(-c.max_push),
-                        soft.mass_scale,
-                        soft.impulse_scale,
-                    )
-                } else {
-                    (0.0, 1.0, 0.0)
-                };
-                let vn = row_velocity(&a, &b, c.normal, &p.normal_row, spin);
-                let lambda =
-                    -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
-                let new = (p.normal_impulse + lambda).max(0.0);
-                if p.max_normal_impulse == 0.0 && new > 0.0 {
-                    // First push on this point: the approach speed that restitution
-                    // reverses, as fast as free motion made it since the step began,
-                    // and no faster. Other contacts' impulses (a light body squeezed
-                    // between a heavy one and a wall) are not an approach to reverse.
-                    // Until now it holds the start-of-step speed.
-                    let prepared = p.relative_velocity;
-                    p.relative_velocity = vn.clamp(prepared - c.approach_gain, prepared);
-                }
-                let dl = new - p.normal_impulse;
-                p.normal_impulse = new;
-                p.max_normal_impulse = p.max_normal_impulse.max(new);
-                apply_normal(&mut a, &mut b, c.normal, &p.normal_row, dl, spin);
-                largest = largest.max(dl.abs());
-                total += new;
-            }
-            if capped || largest <= NORMAL_TOL * total {
-                break;
-            }
+        debug_assert!(
+            c.coupling.map(f32::to_bits)
+                == normal_couplings(&c.points[..c.len], a.inv_mass + b.inv_mass, spin)
+                    .map(f32::to_bits),
+            "a contact's couplings are out of date with its rows"
+        );
+        // Unrolled for each point count (the loops over points then have fixed bounds).
+        match c.len {
+            4 => normal_sweeps::<4>(&mut a, &mut b, c, &separation, inv_h, use_bias),
+            3 => normal_sweeps::<3>(&mut a, &mut b, c, &separation, inv_h, use_bias),
+            2 => normal_sweeps::<2>(&mut a, &mut b, c, &separation, inv_h, use_bias),
+            1 => normal_sweeps::<1>(&mut a, &mut b, c, &separation, inv_h, use_bias),
+            _ => {}
         }
         // Friction, skipped for frictionless pairs (and when the effect is off): the
         // disc at the anchor, clamped to μ·Σλn, then the twist, clamped to μ·Σ λn·arm.
@@ -310,6 +307,73 @@ fn solve_one<const ROLLS: bool>(
         }
         store(bodies, c.a, a);
         store(bodies, c.b, b);
+    }
+}
+
+/// One contact's sweeps over its `N` normal rows (see [`solve_one`]): each reads the
+/// points' normal velocities once, passes each point's impulse on to the points after it
+/// through the couplings, and moves the bodies once at its end.
+#[inline(always)]
+fn normal_sweeps<const N: usize>(
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    c: &mut ContactConstraint,
+    separation: &[f32; MAX_POINTS],
+    inv_h: f32,
+    use_bias: bool,
+) {
+    debug_assert_eq!(N, c.len, "the sweeps' point count");
+    let spin = c.spin;
+    let sweeps = if N > 1 { NORMAL_SWEEPS } else { 1 };
+    for _ in 0..sweeps {
+        let mut vn = [0.0f32; MAX_POINTS];
+        for (v, p) in vn.iter_mut().zip(&c.points[..N]) {
+            *v = row_velocity(a, b, c.normal, &p.normal_row, spin);
+        }
+        let mut dls = [0.0f32; MAX_POINTS];
+        let (mut largest, mut total, mut capped) = (0.0f32, 0.0f32, false);
+        for (k, &s) in separation[..N].iter().enumerate() {
+            let p = &mut c.points[k];
+            let (bias, mass_scale, impulse_scale) = if s > 0.0 {
+                (s * inv_h, 1.0, 0.0)
+            } else if use_bias {
+                let soft = c.softness;
+                capped |= soft.bias_rate * s < -c.max_push;
+                (
+                    (soft.bias_rate * s).max(-c.max_push),
+                    soft.mass_scale,
+                    soft.impulse_scale,
+                )
+            } else {
+                (0.0, 1.0, 0.0)
+            };
+            let vn_k = vn[k];
+            let lambda =
+                -p.normal_mass * mass_scale * (vn_k + bias) - impulse_scale * p.normal_impulse;
+            let new = (p.normal_impulse + lambda).max(0.0);
+            if p.max_normal_impulse == 0.0 && new > 0.0 {
+                // First push on this point: the approach speed that restitution
+                // reverses, as fast as free motion made it since the step began,
+                // and no faster. Other contacts' impulses (a light body squeezed
+                // between a heavy one and a wall) are not an approach to reverse.
+                // Until now it holds the start-of-step speed.
+                let prepared = p.relative_velocity;
+                p.relative_velocity = vn_k.clamp(prepared - c.approach_gain, prepared);
+            }
+            let dl = new - p.normal_impulse;
+            p.normal_impulse = new;
+            p.max_normal_impulse = p.max_normal_impulse.max(new);
+            dls[k] = dl;
+            for j in k + 1..N {
+                vn[j] += c.coupling[coupling_index(j, k)] * dl;
+            }
+            largest = largest.max(dl.abs());
+            total += new;
+        }
+        apply_normals::<N>(a, b, c, &dls, spin);
+        if capped || largest <= NORMAL_TOL * total {
+            break;
+        }
     }
 }
 

@@ -7,6 +7,7 @@
 use crate::math::lanes::{F4, Q4, V3, clamp, eq, gt, lanes, le, lt, max, neg, select};
 use crate::world::{
     AnchorLanes, BodyView, ContactBatch, FrictionLanes, LANES, MAX_POINTS, PointLanes,
+    coupling_index,
 };
 
 use super::iterate::{NORMAL_SWEEPS, NORMAL_TOL};
@@ -90,12 +91,6 @@ struct RowLanes {
 }
 
 impl RowLanes {
-    /// A point's normal row, from its prepared lever arms.
-    #[inline(always)]
-    fn normal(inv_inertia: &[F4; 2], p: &PointLanes) -> Self {
-        Self::of(inv_inertia, p.normal_ra, p.normal_rb)
-    }
-
     /// The row of lever arms `ra` (r × d) and `rb`.
     #[inline(always)]
     fn of(inv_inertia: &[F4; 2], ra: V3, rb: V3) -> Self {
@@ -114,12 +109,32 @@ fn row_velocity(a: &BodyLanes, b: &BodyLanes, d: V3, row: &RowLanes) -> F4 {
     d.dot(b.v.sub(a.v)) - a.w.dot(row.ra) + b.w.dot(row.rb)
 }
 
-/// A normal impulse `dl` at one point.
+/// The normal velocity of b relative to a at a point, from its prepared lever arms (the
+/// scalar pass's `row_velocity`, lane by lane).
 #[inline(always)]
-fn apply_normal(a: &mut BodyLanes, b: &mut BodyLanes, n: V3, row: &RowLanes, dl: F4) {
-    let p = n.scale(dl);
-    a.push(p, row.ia.scale(dl), false);
-    b.push(p, row.ib.scale(dl), true);
+fn normal_velocity(a: &BodyLanes, b: &BodyLanes, n: V3, p: &PointLanes) -> F4 {
+    n.dot(b.v.sub(a.v)) - a.w.dot(p.normal_ra) + b.w.dot(p.normal_rb)
+}
+
+/// Normal impulses `dl` at a batch's points, all at once (as `iterate::apply_normals`
+/// and the warm start apply them).
+#[inline(always)]
+fn apply_normals(
+    a: &mut BodyLanes,
+    b: &mut BodyLanes,
+    c: &ContactBatch,
+    point: &[PointLanes],
+    dl: &[F4; MAX_POINTS],
+) {
+    let (mut total, mut ra, mut rb) = (F4::ZERO, V3::ZERO, V3::ZERO);
+    for (p, &dl) in point.iter().zip(dl) {
+        total = total + dl;
+        ra = ra.add(p.normal_ra.scale(dl));
+        rb = rb.add(p.normal_rb.scale(dl));
+    }
+    let p = c.normal.scale(total);
+    a.push(p, ra.scale(c.inv_inertia[0]), false);
+    b.push(p, rb.scale(c.inv_inertia[1]), true);
 }
 
 /// A twist impulse `d` about the normal `n`: +d on b, −d on a.
@@ -326,21 +341,12 @@ fn solve_batch(
         BodyLanes::gather(bodies, c.b),
     );
     let n = point.len();
-    // The rows of the batch's points; the slots past them are never written or read
-    // (an array of zeros, filled in afterwards, was a `memset` call per batch and pass).
     debug_assert!(n <= MAX_POINTS, "a batch holds at most MAX_POINTS points");
-    let mut rows = [std::mem::MaybeUninit::<RowLanes>::uninit(); MAX_POINTS];
-    for (row, p) in rows.iter_mut().zip(&*point) {
-        row.write(RowLanes::normal(&c.inv_inertia, p));
-    }
-    // Read only as `normal(k)` for k < n, by the sweeps below.
-    let normal = |k: usize| {
-        debug_assert!(k < n, "row {k} of a batch of {n} points");
-        // SAFETY: slot k < n = point.len() was written just above (n ≤ MAX_POINTS).
-        unsafe { rows[k].assume_init_ref() }
-    };
     // The normal sweeps: a lane stops as the scalar pass does (one sweep for a single
-    // point, at most NORMAL_SWEEPS, none after a settled or capped one).
+    // point, at most NORMAL_SWEEPS, none after a settled or capped one). Each reads the
+    // points' normal velocities once, passes each point's impulse on to the points after
+    // it through the couplings, and moves the bodies once at its end (as the scalar pass
+    // does).
     let multi = c.has[1];
     let mut active = c.has[0];
     let mut sweeps = 0;
@@ -352,6 +358,11 @@ fn solve_batch(
             break;
         }
         sweeps += 1;
+        let mut vn = [zero; MAX_POINTS];
+        for (v, p) in vn.iter_mut().zip(&*point) {
+            *v = normal_velocity(&a, &b, c.normal, p);
+        }
+        let mut dls = [zero; MAX_POINTS];
         let (mut largest, mut total, mut capped) = (zero, zero, zero);
         for k in 0..n {
             let p = &mut point[k];
@@ -370,25 +381,29 @@ fn solve_batch(
             } else {
                 (select(speculative, s * inv_h, zero), one, zero)
             };
-            let vn = row_velocity(&a, &b, c.normal, normal(k));
+            let vn_k = vn[k];
             let lambda =
-                neg(p.normal_mass) * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
+                neg(p.normal_mass) * mass_scale * (vn_k + bias) - impulse_scale * p.normal_impulse;
             let new = max(p.normal_impulse + lambda, zero);
             // A point's first push of the step records its approach speed: after that
             // no lane needs it, so it is tested for before the clamp is paid.
             let first = on & eq(p.max_normal_impulse, zero) & gt(new, zero);
             if first.any() {
                 let prepared = p.relative_velocity;
-                let approach = clamp(vn, prepared - c.approach_gain, prepared);
+                let approach = clamp(vn_k, prepared - c.approach_gain, prepared);
                 p.relative_velocity = select(first, approach, prepared);
             }
             let dl = select(on, new - p.normal_impulse, zero);
             p.normal_impulse = select(on, new, p.normal_impulse);
             p.max_normal_impulse = select(on, max(p.max_normal_impulse, new), p.max_normal_impulse);
-            apply_normal(&mut a, &mut b, c.normal, normal(k), dl);
+            dls[k] = dl;
+            for j in k + 1..n {
+                vn[j] = vn[j] + c.coupling[coupling_index(j, k)] * dl;
+            }
             largest = max(largest, dl.abs());
             total = total + select(on, new, zero);
         }
+        apply_normals(&mut a, &mut b, c, point, &dls);
         let settled = capped | le(largest, F4::splat(NORMAL_TOL) * total);
         active = active & !settled;
     }

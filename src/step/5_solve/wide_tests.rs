@@ -6,13 +6,14 @@
 use bevy::prelude::*;
 
 use super::contact::friction_anchor;
-use super::iterate::{solve_listed, warm_start_listed};
+use super::iterate::{apply_normal, solve_listed, warm_start_listed};
 use super::{Pass, solve_steps, warm_start_steps};
 use crate::math::Softness;
 use crate::rng::Rnd;
 use crate::world::{
     Anchoring, AngularRow, ConstraintPoint, ContactBatches, ContactConstraint, FrictionAnchor,
-    LANES, NO_CONTACT, NO_ROLL, STATIC, SolverBody, body, world_inv_inertia,
+    LANES, NO_CONTACT, NO_ROLL, STATIC, SolverBody, body, coupling_index, normal_couplings,
+    row_velocity, world_inv_inertia,
 };
 
 pub(super) fn random_body(r: &mut Rnd) -> SolverBody {
@@ -118,6 +119,7 @@ pub(super) fn random_contact(r: &mut Rnd, bodies: &[SolverBody], fixed: bool) ->
         max_push: if r.unit() < 0.3 { 0.05 } else { 3.0 },
         points,
         len,
+        coupling: normal_couplings(&points[..len], sa.inv_mass + sb.inv_mass, spin),
         anchor: FrictionAnchor::default(),
     };
     let anchor = (r.vec(-0.5, 0.5), r.vec(-0.5, 0.5));
@@ -202,4 +204,40 @@ fn batched_passes_compute_the_scalar_passes_bit_for_bit() {
     // The test means something only if the lanes are mostly full.
     let fill = lanes_used.0 as f32 / lanes_used.1 as f32;
     assert!(fill > 0.6, "lanes {:.0} % full", 100.0 * fill);
+}
+
+/// The couplings against what they stand for: a unit normal impulse at point k, applied
+/// to the bodies point by point (as restitution still applies it), changes point j's
+/// normal velocity by K_jk. Each side of the comparison rounds a few dot products of
+/// terms no larger than the velocities and K themselves, so they agree to a few ε of
+/// those magnitudes; a coupling missing a body's turn, or a term, is off by O(1).
+#[test]
+fn couplings_are_the_velocity_change_of_a_unit_impulse() {
+    let mut r = Rnd(0x5eed_0031);
+    let bodies: Vec<SolverBody> = (0..8).map(|_| random_body(&mut r)).collect();
+    let mut checked = 0;
+    for _ in 0..500 {
+        let fixed = r.unit() < 0.3;
+        let c = random_contact(&mut r, &bodies, fixed);
+        let (a0, b0) = (body(&bodies, c.a), body(&bodies, c.b));
+        for k in 0..c.len {
+            let (mut a, mut b) = (a0, b0);
+            let row_k = &c.points[k].normal_row;
+            apply_normal(&mut a, &mut b, c.normal, row_k, 1.0, c.spin);
+            for j in k + 1..c.len {
+                let row = &c.points[j].normal_row;
+                let before = row_velocity(&a0, &b0, c.normal, row, c.spin);
+                let after = row_velocity(&a, &b, c.normal, row, c.spin);
+                let coupling = c.coupling[coupling_index(j, k)];
+                let tol = 16.0 * f32::EPSILON * (before.abs() + after.abs() + coupling.abs());
+                assert!(
+                    (after - before - coupling).abs() <= tol,
+                    "K[{j}][{k}] = {coupling}, the impulse moved the row by {}",
+                    after - before
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 500, "only {checked} pairs of points checked");
 }
