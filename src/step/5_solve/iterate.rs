@@ -2,15 +2,15 @@
 //! and restitution. Each constraint loads its two bodies once and stores them once; each
 //! row uses the angular parts prepared in [`AngularRow`], and a body that cannot turn
 //! (static, or `LockRotation`) runs no angular terms at all. A sweep over a manifold's
-//! normal rows reads the bodies once and moves them once: the rows see each other's
+//! normal rows reads the bodies once and moves them once, the rows seeing each other's
 //! impulses through their couplings ([`normal_couplings`]): the same Gauss–Seidel sweep
 //! (up to rounding), with the bodies' velocities updated once a sweep, not once a point.
 
 use bevy::prelude::*;
 
 use crate::world::{
-    AngularRow, ContactConstraint, FrictionAnchor, MAX_POINTS, RollingArms, SolverBody, body,
-    coupling_index, normal_couplings, row_velocity, store,
+    AngularRow, ConstraintPoint, ContactConstraint, FrictionAnchor, MAX_POINTS, RollingArms,
+    SolverBody, body, coupling_index, normal_couplings, row_velocity, store,
 };
 
 /// Linear impulse `p` on b and −p on a, with the angular parts `ang_a`, `ang_b`
@@ -40,25 +40,26 @@ pub(super) fn apply_normal(
     apply(a, b, n * dl, [row.ia * dl, row.ib * dl], spin);
 }
 
-/// Normal impulses `dl` at a contact's points, all at once: Σ dl·n on the bodies, and
-/// their moments Σ dl (r × n) through each inverse inertia once (as the warm start
-/// applies them).
+/// Normal impulses `dl` at `points`, all at once: Σ dl·n on the bodies, and their
+/// moments Σ dl (r × n) through each inverse inertia once (the same impulse as point by
+/// point, with a third of the arithmetic; the rounding differs). The warm start applies
+/// last step's impulses so, and each normal sweep its own.
 #[inline(always)]
-fn apply_normals<const N: usize>(
-    a: &mut SolverBody,
-    b: &mut SolverBody,
-    c: &ContactConstraint,
-    dl: &[f32; MAX_POINTS],
+fn apply_normals(
+    (a, b): (&mut SolverBody, &mut SolverBody),
+    n: Vec3,
+    points: &[ConstraintPoint],
+    dl: impl IntoIterator<Item = f32>,
     spin: [bool; 2],
 ) {
     let (mut total, mut ra, mut rb) = (0.0, Vec3::ZERO, Vec3::ZERO);
-    for (p, &dl) in c.points[..N].iter().zip(dl) {
+    for (p, dl) in points.iter().zip(dl) {
         total += dl;
         ra += p.normal_row.ra * dl;
         rb += p.normal_row.rb * dl;
     }
     let moments = [a.inv_inertia * ra, b.inv_inertia * rb];
-    apply(a, b, c.normal * total, moments, spin);
+    apply(a, b, n * total, moments, spin);
 }
 
 /// A twist impulse `d` about the normal: +d on b, −d on a.
@@ -127,17 +128,9 @@ pub fn warm_start_listed(
 #[inline(always)]
 fn warm_start_one(bodies: &mut [SolverBody], c: &ContactConstraint) {
     let (mut a, mut b) = (body(bodies, c.a), body(bodies, c.b));
-    // The normal impulses all at once: Σ λ·n on the bodies, and their moments
-    // Σ λ (r × n) through each inverse inertia once (the same impulse as point by point,
-    // with a third of the arithmetic; the rounding differs).
-    let (mut total, mut ra, mut rb) = (0.0, Vec3::ZERO, Vec3::ZERO);
-    for p in &c.points[..c.len] {
-        total += p.normal_impulse;
-        ra += p.normal_row.ra * p.normal_impulse;
-        rb += p.normal_row.rb * p.normal_impulse;
-    }
-    let moments = [a.inv_inertia * ra, b.inv_inertia * rb];
-    apply(&mut a, &mut b, c.normal * total, moments, c.spin);
+    let points = &c.points[..c.len];
+    let impulses = points.iter().map(|p| p.normal_impulse);
+    apply_normals((&mut a, &mut b), c.normal, points, impulses, c.spin);
     let f = &c.anchor;
     let tangents = [c.tangent1, c.tangent2];
     apply_tangent(
@@ -370,7 +363,7 @@ fn normal_sweeps<const N: usize>(
             largest = largest.max(dl.abs());
             total += new;
         }
-        apply_normals::<N>(a, b, c, &dls, spin);
+        apply_normals((a, b), c.normal, &c.points[..N], dls, spin);
         if capped || largest <= NORMAL_TOL * total {
             break;
         }

@@ -116,18 +116,17 @@ fn normal_velocity(a: &BodyLanes, b: &BodyLanes, n: V3, p: &PointLanes) -> F4 {
     n.dot(b.v.sub(a.v)) - a.w.dot(p.normal_ra) + b.w.dot(p.normal_rb)
 }
 
-/// Normal impulses `dl` at a batch's points, all at once (as `iterate::apply_normals`
-/// and the warm start apply them).
+/// Normal impulses `dl` at a batch's points, all at once (as `iterate::apply_normals`):
+/// the warm start's, and each normal sweep's.
 #[inline(always)]
 fn apply_normals(
-    a: &mut BodyLanes,
-    b: &mut BodyLanes,
+    (a, b): (&mut BodyLanes, &mut BodyLanes),
     c: &ContactBatch,
     point: &[PointLanes],
-    dl: &[F4; MAX_POINTS],
+    dl: impl IntoIterator<Item = F4>,
 ) {
     let (mut total, mut ra, mut rb) = (F4::ZERO, V3::ZERO, V3::ZERO);
-    for (p, &dl) in point.iter().zip(dl) {
+    for (p, dl) in point.iter().zip(dl) {
         total = total + dl;
         ra = ra.add(p.normal_ra.scale(dl));
         rb = rb.add(p.normal_rb.scale(dl));
@@ -208,16 +207,9 @@ fn warm_start_any(
             BodyLanes::gather(bodies, c.b),
         );
         let range = c.range();
-        // The normal impulses all at once (see `iterate::warm_start_one`).
-        let (mut total, mut ra, mut rb) = (F4::ZERO, V3::ZERO, V3::ZERO);
-        for p in &points[range.start - base..range.end - base] {
-            total = total + p.normal_impulse;
-            ra = ra.add(p.normal_ra.scale(p.normal_impulse));
-            rb = rb.add(p.normal_rb.scale(p.normal_impulse));
-        }
-        let p = c.normal.scale(total);
-        a.push(p, ra.scale(c.inv_inertia[0]), false);
-        b.push(p, rb.scale(c.inv_inertia[1]), true);
+        let point = &points[range.start - base..range.end - base];
+        let impulses = point.iter().map(|p| p.normal_impulse);
+        apply_normals((&mut a, &mut b), c, point, impulses);
         let tangent = anchor_rows(c);
         apply_tangent(&mut a, &mut b, &c.tangents, &tangent, f.tangent_impulse);
         apply_twist(&mut a, &mut b, &c.inv_inertia, c.normal, f.twist_impulse);
@@ -403,7 +395,7 @@ fn solve_batch(
             largest = max(largest, dl.abs());
             total = total + select(on, new, zero);
         }
-        apply_normals(&mut a, &mut b, c, point, &dls);
+        apply_normals((&mut a, &mut b), c, point, dls);
         let settled = capped | le(largest, F4::splat(NORMAL_TOL) * total);
         active = active & !settled;
     }
