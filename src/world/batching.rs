@@ -16,6 +16,9 @@ use std::ops::Range;
 
 use bevy::prelude::*;
 
+#[cfg(target_arch = "x86_64")]
+use crate::math::lanes::three_operand;
+
 use super::{
     AnchorLanes, ContactBatch, ContactConstraint, FrictionLanes, PointLanes, STATIC, SolverBody,
 };
@@ -191,6 +194,36 @@ impl ContactBatches {
         bodies: &[SolverBody],
         fixed: usize,
     ) {
+        #[cfg(target_arch = "x86_64")]
+        if three_operand() {
+            // SAFETY: the CPU has the features (checked just above).
+            return unsafe { self.build_vex(constraints, keys, bodies, fixed) };
+        }
+        self.build_any(constraints, keys, bodies, fixed)
+    }
+
+    /// [`build_any`](Self::build_any) compiled for AVX2's three-operand forms (see
+    /// [`three_operand`]).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx,avx2")]
+    fn build_vex(
+        &mut self,
+        constraints: &[ContactConstraint],
+        keys: &[ContactKey],
+        bodies: &[SolverBody],
+        fixed: usize,
+    ) {
+        self.build_any(constraints, keys, bodies, fixed)
+    }
+
+    #[inline(always)]
+    fn build_any(
+        &mut self,
+        constraints: &[ContactConstraint],
+        keys: &[ContactKey],
+        bodies: &[SolverBody],
+        fixed: usize,
+    ) {
         debug_assert_eq!(keys.len(), constraints.len(), "one key a constraint");
         debug_assert!(
             (constraints.iter().zip(keys)).all(|(c, k)| ContactKey::of(c, bodies) == *k),
@@ -215,6 +248,7 @@ impl ContactBatches {
     /// contacts level after level in contact order, and the contacts of one level share
     /// no moved body. Each level is cut into batches in contact order; its scalar
     /// contacts follow its batches. Linear in the contacts.
+    #[inline(always)]
     fn pack(
         &mut self,
         constraints: &[ContactConstraint],

@@ -153,6 +153,7 @@ impl PointLanes {
 impl ContactBatch {
     /// The batch of the listed constraints, its points appended to `points` and
     /// `anchors` and its friction impulses to `friction`.
+    #[inline(always)]
     pub(crate) fn new(
         (constraints, keys): (&[ContactConstraint], &[ContactKey]),
         bodies: &[SolverBody],

@@ -7,6 +7,8 @@ use bevy::prelude::*;
 use super::push_out::PushOutShares;
 use super::stiffness::{contact_softness, load_ratio, pair_size};
 use crate::collider::Shape;
+#[cfg(target_arch = "x86_64")]
+use crate::math::lanes::three_operand;
 use crate::world::{
     Anchoring, AngularRow, BodyState, COUPLINGS, ColliderEntry, ConstraintPoint, ContactConstraint,
     ContactKey, ContactParams, FrictionAnchor, MAX_POINTS, Manifold, NO_ROLL, RollingArms, STATIC,
@@ -223,6 +225,35 @@ type Shared<'a> = (
 /// `arms`.
 /// `Prepared::fixed` counts the run's own leading fixed contacts.
 fn prepare_run(
+    manifolds: &[Manifold],
+    first: usize,
+    shared: Shared,
+    out: (&mut [ContactConstraint], &mut [ContactKey]),
+    arms: &mut Vec<RollingArms>,
+) -> Prepared {
+    #[cfg(target_arch = "x86_64")]
+    if three_operand() {
+        // SAFETY: the CPU has the features (checked just above).
+        return unsafe { prepare_vex(manifolds, first, shared, out, arms) };
+    }
+    prepare_any(manifolds, first, shared, out, arms)
+}
+
+/// [`prepare_any`] compiled for AVX2's three-operand forms (see [`three_operand`]).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx,avx2")]
+fn prepare_vex(
+    manifolds: &[Manifold],
+    first: usize,
+    shared: Shared,
+    out: (&mut [ContactConstraint], &mut [ContactKey]),
+    arms: &mut Vec<RollingArms>,
+) -> Prepared {
+    prepare_any(manifolds, first, shared, out, arms)
+}
+
+#[inline(always)]
+fn prepare_any(
     manifolds: &[Manifold],
     first: usize,
     (colliders, states, bodies, stiffness, (overlaps, heaviest)): Shared,

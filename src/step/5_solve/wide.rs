@@ -4,6 +4,8 @@
 //! stays as the reference these are tested against, bit for bit). A batch holds its
 //! contacts lane by lane ([`ContactBatch`]) and gathers its bodies' velocities.
 
+#[cfg(target_arch = "x86_64")]
+use crate::math::lanes::three_operand;
 use crate::math::lanes::{F4, Q4, V3, clamp, eq, gt, lanes, le, lt, max, neg, select};
 use crate::world::{
     AnchorLanes, BodyView, ContactBatch, FrictionLanes, LANES, MAX_POINTS, PointLanes,
@@ -29,8 +31,8 @@ struct PoseLanes {
 impl PoseLanes {
     #[inline(always)]
     fn gather(bodies: &(impl BodyView + ?Sized), index: [u32; LANES]) -> Self {
-        let (b0, b1) = (bodies.get(index[0]), bodies.get(index[1]));
-        let (b2, b3) = (bodies.get(index[2]), bodies.get(index[3]));
+        let (b0, b1) = (bodies.at(index[0]), bodies.at(index[1]));
+        let (b2, b3) = (bodies.at(index[2]), bodies.at(index[3]));
         Self {
             dp: V3::gather([b0.dp, b1.dp, b2.dp, b3.dp]),
             dq: Q4::gather([b0.dq, b1.dq, b2.dq, b3.dq]),
@@ -41,8 +43,8 @@ impl PoseLanes {
 impl BodyLanes {
     #[inline(always)]
     fn gather(bodies: &(impl BodyView + ?Sized), index: [u32; LANES]) -> Self {
-        let (b0, b1) = (bodies.get(index[0]), bodies.get(index[1]));
-        let (b2, b3) = (bodies.get(index[2]), bodies.get(index[3]));
+        let (b0, b1) = (bodies.at(index[0]), bodies.at(index[1]));
+        let (b2, b3) = (bodies.at(index[2]), bodies.at(index[3]));
         Self {
             v: V3::gather([b0.v, b1.v, b2.v, b3.v]),
             w: V3::gather([b0.w, b1.w, b2.w, b3.w]),
@@ -179,12 +181,28 @@ pub fn warm_start_batches(
         // SAFETY: the CPU has the features (checked just above).
         return unsafe { warm_start_wide(bodies, batches, points, friction) };
     }
+    #[cfg(target_arch = "x86_64")]
+    if three_operand() {
+        // SAFETY: the CPU has the features (checked just above).
+        return unsafe { warm_start_vex(bodies, batches, points, friction) };
+    }
     warm_start_any(bodies, batches, points, friction)
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f,avx512vl")]
 fn warm_start_wide(
+    bodies: &mut (impl BodyView + ?Sized),
+    batches: &[ContactBatch],
+    points: &[PointLanes],
+    friction: &[FrictionLanes],
+) {
+    warm_start_any(bodies, batches, points, friction)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx,avx2")]
+fn warm_start_vex(
     bodies: &mut (impl BodyView + ?Sized),
     batches: &[ContactBatch],
     points: &[PointLanes],
@@ -240,6 +258,11 @@ pub fn solve_batches(
         // SAFETY: the CPU has the features (checked just above).
         return unsafe { solve_wide(bodies, batches, points, friction, h, use_bias, measure) };
     }
+    #[cfg(target_arch = "x86_64")]
+    if three_operand() {
+        // SAFETY: the CPU has the features (checked just above).
+        return unsafe { solve_vex(bodies, batches, points, friction, h, use_bias, measure) };
+    }
     solve_any(bodies, batches, points, friction, h, use_bias, measure)
 }
 
@@ -255,6 +278,20 @@ fn wide_registers() -> bool {
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f,avx512vl")]
 fn solve_wide(
+    bodies: &mut (impl BodyView + ?Sized),
+    batches: &[ContactBatch],
+    points: &mut [PointLanes],
+    friction: &mut [FrictionLanes],
+    h: f32,
+    use_bias: bool,
+    measure: Option<&[AnchorLanes]>,
+) -> u32 {
+    solve_any(bodies, batches, points, friction, h, use_bias, measure)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx,avx2")]
+fn solve_vex(
     bodies: &mut (impl BodyView + ?Sized),
     batches: &[ContactBatch],
     points: &mut [PointLanes],
