@@ -22,8 +22,6 @@ pub(crate) struct PointLanes {
     /// The normal row's lever arms ra × n and rb × n, m.
     pub normal_ra: V3,
     pub normal_rb: V3,
-    /// See [`ConstraintPoint::adjusted_separation`], m.
-    pub adjusted_separation: F4,
     /// Effective mass, kg.
     pub normal_mass: F4,
     /// Accumulated impulse this substep, N·s.
@@ -46,12 +44,15 @@ pub(crate) struct AnchorLanes {
     /// Anchors from each body's centre, world frame, start of step, m.
     pub ra: V3,
     pub rb: V3,
+    /// See [`ConstraintPoint::adjusted_separation`], m.
+    pub adjusted_separation: F4,
 }
 
 impl AnchorLanes {
     const ZERO: Self = Self {
         ra: V3::ZERO,
         rb: V3::ZERO,
+        adjusted_separation: F4::ZERO,
     };
 }
 
@@ -122,7 +123,6 @@ impl PointLanes {
     const ZERO: Self = Self {
         normal_ra: V3::ZERO,
         normal_rb: V3::ZERO,
-        adjusted_separation: F4::ZERO,
         normal_mass: F4::ZERO,
         normal_impulse: F4::ZERO,
         twist_arm: F4::ZERO,
@@ -134,7 +134,6 @@ impl PointLanes {
     fn set(&mut self, l: usize, p: &ConstraintPoint) {
         self.normal_ra.set(l, p.normal_row.ra);
         self.normal_rb.set(l, p.normal_row.rb);
-        set(&mut self.adjusted_separation, l, p.adjusted_separation);
         set(&mut self.normal_mass, l, p.normal_mass);
         set(&mut self.normal_impulse, l, p.normal_impulse);
         set(&mut self.twist_arm, l, p.twist_arm);
@@ -239,6 +238,7 @@ impl ContactBatch {
                 point[k].set(l, &c.points[k]);
                 anchor[k].ra.set(l, c.points[k].ra);
                 anchor[k].rb.set(l, c.points[k].rb);
+                set(&mut anchor[k].adjusted_separation, l, c.points[k].adjusted_separation);
             }
         }
         friction.push(rubbing);

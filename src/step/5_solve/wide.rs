@@ -351,7 +351,7 @@ fn measure_batch(
     let na = V3::select(c.turn[0], a.dq.rotate_back(c.normal), c.normal);
     let nb = V3::select(c.turn[1], b.dq.rotate_back(c.normal), c.normal);
     for (p, r) in point.iter_mut().zip(anchor) {
-        p.separation = moved + nb.dot(r.rb) - na.dot(r.ra) + p.adjusted_separation;
+        p.separation = moved + nb.dot(r.rb) - na.dot(r.ra) + r.adjusted_separation;
     }
 }
 
