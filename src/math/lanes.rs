@@ -161,6 +161,28 @@ impl V3 {
         }
     }
 
+    /// `Vec3::any_orthonormal_pair` per lane of unit vectors, in glam's operations and
+    /// order (Pixar's branchless basis): the same bits. (A zero lane gives (1, 0, 0),
+    /// (0, 1, 0).)
+    #[inline(always)]
+    pub fn any_orthonormal_pair(self) -> (Self, Self) {
+        let sign = F4::ONE | (self.z & F4::splat(-0.0));
+        let a = F4::splat(-1.0) / (sign + self.z);
+        let b = self.x * self.y * a;
+        (
+            Self {
+                x: F4::ONE + sign * self.x * self.x * a,
+                y: sign * b,
+                z: neg(sign) * self.x,
+            },
+            Self {
+                x: b,
+                y: sign + self.y * self.y * a,
+                z: neg(self.y),
+            },
+        )
+    }
+
     /// `t` where `m` is set, else `f`.
     #[inline(always)]
     pub fn select(m: F4, t: Self, f: Self) -> Self {
@@ -241,7 +263,14 @@ mod tests {
             let q = a.map(|v| Quat::from_scaled_axis(v * 0.3));
             let rotated = Q4::gather(q).rotate(lb);
             let (dot, cross) = (la.dot(lb).to_array(), la.cross(lb));
+            let units = a.map(|v| v.normalize());
+            let mut units_z = units;
+            units_z[(seed % 4) as usize] =
+                Vec3::new(0.0, 0.0, if seed % 2 == 0 { 1.0 } else { -1.0 });
+            let pair = V3::gather(units_z).any_orthonormal_pair();
             for l in 0..4 {
+                let (t1, t2) = units_z[l].any_orthonormal_pair();
+                assert_eq!([pair.0.lane(l), pair.1.lane(l)], [t1, t2]);
                 assert_eq!(dot[l].to_bits(), a[l].dot(b[l]).to_bits());
                 assert_eq!(cross.lane(l), a[l].cross(b[l]));
                 assert_eq!(rotated.lane(l), q[l] * b[l]);

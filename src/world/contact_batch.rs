@@ -78,8 +78,9 @@ pub(crate) struct ContactBatch {
     /// Whether the contacts move each lane's body on each side (see
     /// `moved_by_contacts`): only those velocities are written back.
     pub moved: [[bool; LANES]; 2],
+    /// The normals; the tangents are made from them where needed
+    /// ([`tangents`](Self::tangents)): 96 bytes a batch fewer to read in every pass.
     pub normal: V3,
-    pub tangents: [V3; 2],
     /// Each side's inverse inertia, 1/(kg·m²): the same about every axis for every
     /// body in a batch (an anisotropic body that turns has its rows refreshed every
     /// substep, so its contacts stay out of the batches), zero for a static side.
@@ -94,13 +95,16 @@ pub(crate) struct ContactBatch {
     pub impulse_scale: F4,
     /// m/s, see [`ContactConstraint::max_push`].
     pub max_push: F4,
-    /// All-ones lanes whose contact has more than k points, per k.
+    /// All-ones lanes whose contact has more than k points, per k. (Making them in the
+    /// pass from a point count reads 48 bytes a batch fewer, 1.6 % fewer L2 misses on the
+    /// pyramid, for 5.7 % more instructions.)
     pub has: [F4; MAX_POINTS],
     /// See [`ContactConstraint::coupling`], 1/kg.
     pub coupling: [F4; COUPLINGS],
     /// The tangent rows' lever arms at the friction anchors (see
     /// [`FrictionAnchor`](super::FrictionAnchor)) as prepared: ra × t and rb × t for
-    /// each tangent t, m.
+    /// each tangent t, m. (Making them in the pass from the anchors reads 96 bytes a
+    /// batch fewer, 4 % fewer L2 misses on the pyramid, for 3 % more instructions.)
     pub tangent_ra: [V3; 2],
     pub tangent_rb: [V3; 2],
     /// kg, kg·m² (0: no twist row).
@@ -173,7 +177,6 @@ impl ContactBatch {
             b: [STATIC; LANES],
             moved: [[false; LANES]; 2],
             normal: V3::ZERO,
-            tangents: [V3::ZERO; 2],
             inv_inertia: [F4::ZERO; 2],
             turn: [F4::ZERO; 2],
             friction: F4::ZERO,
@@ -200,8 +203,7 @@ impl ContactBatch {
             b.moved[0][l] = keys[ci as usize].moved[0];
             b.moved[1][l] = keys[ci as usize].moved[1];
             b.normal.set(l, c.normal);
-            b.tangents[0].set(l, c.tangent1);
-            b.tangents[1].set(l, c.tangent2);
+            debug_assert_eq!((c.tangent1, c.tangent2), c.normal.any_orthonormal_pair());
             for (side, i) in [c.a, c.b].into_iter().enumerate() {
                 let m = body(bodies, i).inv_inertia;
                 debug_assert_eq!(m, Mat3::from_diagonal(Vec3::splat(m.x_axis.x)), "batched");
@@ -238,11 +240,23 @@ impl ContactBatch {
                 point[k].set(l, &c.points[k]);
                 anchor[k].ra.set(l, c.points[k].ra);
                 anchor[k].rb.set(l, c.points[k].rb);
-                set(&mut anchor[k].adjusted_separation, l, c.points[k].adjusted_separation);
+                set(
+                    &mut anchor[k].adjusted_separation,
+                    l,
+                    c.points[k].adjusted_separation,
+                );
             }
         }
         friction.push(rubbing);
         b
+    }
+
+    /// The lanes' friction tangents, as each constraint has them
+    /// (`Vec3::any_orthonormal_pair` of the normal, bit for bit).
+    #[inline(always)]
+    pub(crate) fn tangents(&self) -> [V3; 2] {
+        let (t1, t2) = self.normal.any_orthonormal_pair();
+        [t1, t2]
     }
 
     /// Its points' range in the batches' point lanes.

@@ -55,6 +55,7 @@ pub(super) fn store_impulses(
                 valid.for_each(|&c| prefetch(&manifolds[c as usize]));
             }
             let points = &batches.points[b.range()];
+            let tangents = b.tangents();
             for (l, &ci) in b.contact.iter().enumerate() {
                 if ci == NO_CONTACT {
                     continue;
@@ -68,7 +69,7 @@ pub(super) fn store_impulses(
                     (*i, *a) = (lane(&p.normal_impulse), lane(&p.relative_velocity));
                 }
                 let t = [lane(&f.tangent_impulse[0]), lane(&f.tangent_impulse[1])];
-                let tangent = b.tangents[0].lane(l) * t[0] + b.tangents[1].lane(l) * t[1];
+                let tangent = tangents[0].lane(l) * t[0] + tangents[1].lane(l) * t[1];
                 // What the constraint, written back, would have stored (debug builds).
                 #[cfg(debug_assertions)]
                 let expected = {

@@ -228,8 +228,9 @@ fn warm_start_any(
         let point = &points[range.start - base..range.end - base];
         let impulses = point.iter().map(|p| p.normal_impulse);
         apply_normals((&mut a, &mut b), c, point, impulses);
+        let tangents = c.tangents();
         let tangent = anchor_rows(c);
-        apply_tangent(&mut a, &mut b, &c.tangents, &tangent, f.tangent_impulse);
+        apply_tangent(&mut a, &mut b, &tangents, &tangent, f.tangent_impulse);
         apply_twist(&mut a, &mut b, &c.inv_inertia, c.normal, f.twist_impulse);
         a.scatter(bodies, c.a, c.moved[0]);
         b.scatter(bodies, c.b, c.moved[1]);
@@ -444,9 +445,10 @@ fn solve_batch(
         total = total + p.normal_impulse;
         moment = moment + p.normal_impulse * p.twist_arm;
     }
+    let tangents = c.tangents();
     let tangent = anchor_rows(c);
-    let vt0 = row_velocity(&a, &b, c.tangents[0], &tangent[0]);
-    let vt1 = row_velocity(&a, &b, c.tangents[1], &tangent[1]);
+    let vt0 = row_velocity(&a, &b, tangents[0], &tangent[0]);
+    let vt1 = row_velocity(&a, &b, tangents[1], &tangent[1]);
     let [old0, old1] = f.tangent_impulse;
     let limit = c.friction * total;
     let (free0, free1) = (old0 - c.tangent_mass * vt0, old1 - c.tangent_mass * vt1);
@@ -462,7 +464,7 @@ fn solve_batch(
         select(rubs, new1 - old1, zero),
     ];
     f.tangent_impulse = [select(rubs, new0, old0), select(rubs, new1, old1)];
-    apply_tangent(&mut a, &mut b, &c.tangents, &tangent, d);
+    apply_tangent(&mut a, &mut b, &tangents, &tangent, d);
     let twists = rubs & gt(c.twist_mass, zero);
     if twists.any() {
         let limit = c.friction * moment;
