@@ -18,7 +18,18 @@ pub type F4 = f32x4;
 #[cfg(target_arch = "x86_64")]
 #[inline]
 pub fn three_operand() -> bool {
+    #[cfg(test)]
+    if PLAIN_ONLY.get() {
+        return false;
+    }
     std::is_x86_feature_detected!("avx2")
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Tests set it to run the plain copies of the hot loops on a CPU that has the
+    /// features for the others, so that each copy is checked against the reference.
+    pub static PLAIN_ONLY: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
 }
 
 /// The lanes of four values.

@@ -273,6 +273,10 @@ pub fn solve_batches(
 #[cfg(target_arch = "x86_64")]
 #[inline]
 fn wide_registers() -> bool {
+    #[cfg(test)]
+    if crate::math::lanes::PLAIN_ONLY.get() {
+        return false;
+    }
     std::is_x86_feature_detected!("avx512f") && std::is_x86_feature_detected!("avx512vl")
 }
 

@@ -138,8 +138,17 @@ pub(super) fn assert_same(bodies: &[SolverBody], reference: &[SolverBody], what:
     }
 }
 
+/// Each compiled copy of the batched passes (see `math::lanes::three_operand`): the
+/// one this CPU picks, and the plain one.
 #[test]
 fn batched_passes_compute_the_scalar_passes_bit_for_bit() {
+    for plain in [false, true] {
+        crate::math::lanes::PLAIN_ONLY.set(plain);
+        batched_passes_match_scalar();
+    }
+}
+
+fn batched_passes_match_scalar() {
     let mut r = Rnd(0x5eed_0017);
     let h = 1.0 / 240.0;
     let mut lanes_used = (0, 0);
