@@ -16,15 +16,14 @@ use std::ops::Range;
 
 use bevy::prelude::*;
 
-#[cfg(target_arch = "x86_64")]
-use crate::math::lanes::three_operand;
+use crate::math::lanes::three_operand_copy;
 
 use super::{
     AnchorLanes, ContactBatch, ContactConstraint, FrictionLanes, PointLanes, STATIC, SolverBody,
 };
 
-/// Contacts solved side by side in one batch (SSE2's four f32 lanes).
-pub(crate) const LANES: usize = 4;
+/// Contacts solved side by side in one batch (an AVX register's eight f32 lanes).
+pub(crate) const LANES: usize = crate::math::lanes::WIDTH;
 /// The fewest contacts a batch is built for; a level's last few below it take the scalar
 /// pass.
 pub(crate) const MIN_LANES: usize = 2;
@@ -147,6 +146,44 @@ impl ContactKey {
     }
 }
 
+three_operand_copy! {
+    /// [`ContactBatches::build_keyed`].
+    fn build_run / build_vex => build_any(
+        this: &mut ContactBatches,
+        constraints: &[ContactConstraint],
+        keys: &[ContactKey],
+        bodies: &[SolverBody],
+        fixed: usize,
+    )
+}
+
+#[inline(always)]
+fn build_any(
+    this: &mut ContactBatches,
+    constraints: &[ContactConstraint],
+    keys: &[ContactKey],
+    bodies: &[SolverBody],
+    fixed: usize,
+) {
+    debug_assert_eq!(keys.len(), constraints.len(), "one key a constraint");
+    debug_assert!(
+        (constraints.iter().zip(keys)).all(|(c, k)| ContactKey::of(c, bodies) == *k),
+        "keys out of date"
+    );
+    this.batches.clear();
+    this.points.clear();
+    this.anchors.clear();
+    this.friction.clear();
+    this.steps.clear();
+    this.stamp.clear();
+    this.stamp.resize(bodies.len(), 0);
+    this.pack(constraints, keys, bodies, 0..fixed);
+    this.fixed_steps = this.steps.len();
+    this.fixed_batches = this.batches.len();
+    this.pack(constraints, keys, bodies, fixed..constraints.len());
+    debug_assert!(this.is_valid(constraints, bodies), "a batch shares a body");
+}
+
 /// How many contacts ahead of the one being packed its constraint is fetched: a level's
 /// contacts sit all over the constraint list, and each is 648 bytes.
 const PREFETCH_AHEAD: usize = 8;
@@ -194,53 +231,7 @@ impl ContactBatches {
         bodies: &[SolverBody],
         fixed: usize,
     ) {
-        #[cfg(target_arch = "x86_64")]
-        if three_operand() {
-            // SAFETY: the CPU has the features (checked just above).
-            return unsafe { self.build_vex(constraints, keys, bodies, fixed) };
-        }
-        self.build_any(constraints, keys, bodies, fixed)
-    }
-
-    /// [`build_any`](Self::build_any) compiled for AVX2's three-operand forms (see
-    /// [`three_operand`]).
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx,avx2")]
-    fn build_vex(
-        &mut self,
-        constraints: &[ContactConstraint],
-        keys: &[ContactKey],
-        bodies: &[SolverBody],
-        fixed: usize,
-    ) {
-        self.build_any(constraints, keys, bodies, fixed)
-    }
-
-    #[inline(always)]
-    fn build_any(
-        &mut self,
-        constraints: &[ContactConstraint],
-        keys: &[ContactKey],
-        bodies: &[SolverBody],
-        fixed: usize,
-    ) {
-        debug_assert_eq!(keys.len(), constraints.len(), "one key a constraint");
-        debug_assert!(
-            (constraints.iter().zip(keys)).all(|(c, k)| ContactKey::of(c, bodies) == *k),
-            "keys out of date"
-        );
-        self.batches.clear();
-        self.points.clear();
-        self.anchors.clear();
-        self.friction.clear();
-        self.steps.clear();
-        self.stamp.clear();
-        self.stamp.resize(bodies.len(), 0);
-        self.pack(constraints, keys, bodies, 0..fixed);
-        self.fixed_steps = self.steps.len();
-        self.fixed_batches = self.batches.len();
-        self.pack(constraints, keys, bodies, fixed..constraints.len());
-        debug_assert!(self.is_valid(constraints, bodies), "a batch shares a body");
+        build_run(self, constraints, keys, bodies, fixed);
     }
 
     /// Packs one part by levels: a contact's level is one more than the highest level

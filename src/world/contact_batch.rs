@@ -1,4 +1,4 @@
-//! Contact batches: four contacts that share no moved body (see
+//! Contact batches: eight contacts that share no moved body (see
 //! [`ContactBatches`](super::ContactBatches)) stored lane by lane (structure of arrays),
 //! built once a step from their
 //! [`ContactConstraint`]s, so that the solver's passes load whole lanes at once. The
@@ -10,7 +10,7 @@ use super::{
     COUPLINGS, ConstraintPoint, ContactConstraint, ContactKey, LANES, MAX_POINTS, NO_CONTACT,
     STATIC, SolverBody, body,
 };
-use crate::math::lanes::{F4, V3};
+use crate::math::lanes::{F8, V3};
 
 /// One point of each lane's contact; zeros past a contact's points. The normal row's
 /// lever arms are kept as prepared; their images under the inverse inertia (see
@@ -23,17 +23,17 @@ pub(crate) struct PointLanes {
     pub normal_ra: V3,
     pub normal_rb: V3,
     /// Effective mass, kg.
-    pub normal_mass: F4,
+    pub normal_mass: F8,
     /// Accumulated impulse this substep, N·s.
-    pub normal_impulse: F4,
+    pub normal_impulse: F8,
     /// See [`ConstraintPoint::twist_arm`], m.
-    pub twist_arm: F4,
-    pub max_normal_impulse: F4,
+    pub twist_arm: F8,
+    pub max_normal_impulse: F8,
     /// See [`ConstraintPoint::relative_velocity`], m/s.
-    pub relative_velocity: F4,
+    pub relative_velocity: F8,
     /// The separation now (positions move only between substeps), as the first pass
     /// after they moved measured it, m.
-    pub separation: F4,
+    pub separation: F8,
 }
 
 /// One point of each lane's contact, beside its [`PointLanes`] (`ContactBatches::anchors`,
@@ -45,14 +45,14 @@ pub(crate) struct AnchorLanes {
     pub ra: V3,
     pub rb: V3,
     /// See [`ConstraintPoint::adjusted_separation`], m.
-    pub adjusted_separation: F4,
+    pub adjusted_separation: F8,
 }
 
 impl AnchorLanes {
     const ZERO: Self = Self {
         ra: V3::ZERO,
         rb: V3::ZERO,
-        adjusted_separation: F4::ZERO,
+        adjusted_separation: F8::ZERO,
     };
 }
 
@@ -62,12 +62,12 @@ impl AnchorLanes {
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct FrictionLanes {
     /// Accumulated friction impulse this substep along the two tangents, N·s.
-    pub tangent_impulse: [F4; 2],
+    pub tangent_impulse: [F8; 2],
     /// Accumulated twist impulse about the normal, N·m·s.
-    pub twist_impulse: F4,
+    pub twist_impulse: F8,
 }
 
-/// Four contacts that share no body the solver moves, lane by lane.
+/// Eight contacts that share no body the solver moves, lane by lane.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct ContactBatch {
     /// The constraints in the lanes ([`NO_CONTACT`] for an empty lane).
@@ -84,23 +84,23 @@ pub(crate) struct ContactBatch {
     /// Each side's inverse inertia, 1/(kg·m²): the same about every axis for every
     /// body in a batch (an anisotropic body that turns has its rows refreshed every
     /// substep, so its contacts stay out of the batches), zero for a static side.
-    pub inv_inertia: [F4; 2],
+    pub inv_inertia: [F8; 2],
     /// All-ones lanes where each side's anchor turns with its body.
-    pub turn: [F4; 2],
-    pub friction: F4,
+    pub turn: [F8; 2],
+    pub friction: F8,
     /// m/s, see [`ContactConstraint::approach_gain`].
-    pub approach_gain: F4,
-    pub bias_rate: F4,
-    pub mass_scale: F4,
-    pub impulse_scale: F4,
+    pub approach_gain: F8,
+    pub bias_rate: F8,
+    pub mass_scale: F8,
+    pub impulse_scale: F8,
     /// m/s, see [`ContactConstraint::max_push`].
-    pub max_push: F4,
+    pub max_push: F8,
     /// All-ones lanes whose contact has more than k points, per k. (Making them in the
     /// pass from a point count reads 48 bytes a batch fewer, 1.6 % fewer L2 misses on the
     /// pyramid, for 5.7 % more instructions.)
-    pub has: [F4; MAX_POINTS],
+    pub has: [F8; MAX_POINTS],
     /// See [`ContactConstraint::coupling`], 1/kg.
-    pub coupling: [F4; COUPLINGS],
+    pub coupling: [F8; COUPLINGS],
     /// The tangent rows' lever arms at the friction anchors (see
     /// [`FrictionAnchor`](super::FrictionAnchor)) as prepared: ra × t and rb × t for
     /// each tangent t, m. (Making them in the pass from the anchors reads 96 bytes a
@@ -108,8 +108,8 @@ pub(crate) struct ContactBatch {
     pub tangent_ra: [V3; 2],
     pub tangent_rb: [V3; 2],
     /// kg, kg·m² (0: no twist row).
-    pub tangent_mass: F4,
-    pub twist_mass: F4,
+    pub tangent_mass: F8,
+    pub twist_mass: F8,
     /// Where the batch's points start in the batches' point lanes, and how many it has
     /// (the most of any lane).
     pub first: u32,
@@ -117,7 +117,7 @@ pub(crate) struct ContactBatch {
 }
 
 #[inline(always)]
-fn set(v: &mut F4, l: usize, x: f32) {
+fn set(v: &mut F8, l: usize, x: f32) {
     v.as_array_mut()[l] = x;
 }
 
@@ -127,12 +127,12 @@ impl PointLanes {
     const ZERO: Self = Self {
         normal_ra: V3::ZERO,
         normal_rb: V3::ZERO,
-        normal_mass: F4::ZERO,
-        normal_impulse: F4::ZERO,
-        twist_arm: F4::ZERO,
-        max_normal_impulse: F4::ZERO,
-        relative_velocity: F4::ZERO,
-        separation: F4::ZERO,
+        normal_mass: F8::ZERO,
+        normal_impulse: F8::ZERO,
+        twist_arm: F8::ZERO,
+        max_normal_impulse: F8::ZERO,
+        relative_velocity: F8::ZERO,
+        separation: F8::ZERO,
     };
 
     fn set(&mut self, l: usize, p: &ConstraintPoint) {
@@ -177,20 +177,20 @@ impl ContactBatch {
             b: [STATIC; LANES],
             moved: [[false; LANES]; 2],
             normal: V3::ZERO,
-            inv_inertia: [F4::ZERO; 2],
-            turn: [F4::ZERO; 2],
-            friction: F4::ZERO,
-            approach_gain: F4::ZERO,
-            bias_rate: F4::ZERO,
-            mass_scale: F4::ZERO,
-            impulse_scale: F4::ZERO,
-            max_push: F4::ZERO,
-            has: [F4::ZERO; MAX_POINTS],
-            coupling: [F4::ZERO; COUPLINGS],
+            inv_inertia: [F8::ZERO; 2],
+            turn: [F8::ZERO; 2],
+            friction: F8::ZERO,
+            approach_gain: F8::ZERO,
+            bias_rate: F8::ZERO,
+            mass_scale: F8::ZERO,
+            impulse_scale: F8::ZERO,
+            max_push: F8::ZERO,
+            has: [F8::ZERO; MAX_POINTS],
+            coupling: [F8::ZERO; COUPLINGS],
             tangent_ra: [V3::ZERO; 2],
             tangent_rb: [V3::ZERO; 2],
-            tangent_mass: F4::ZERO,
-            twist_mass: F4::ZERO,
+            tangent_mass: F8::ZERO,
+            twist_mass: F8::ZERO,
             first: first as u32,
             points: most as u32,
         };
@@ -277,7 +277,7 @@ impl ContactBatch {
         for (l, &ci) in self.contact.iter().enumerate() {
             if ci != NO_CONTACT {
                 let c = &mut constraints[ci as usize];
-                let lane = |v: &F4| v.as_array_ref()[l];
+                let lane = |v: &F8| v.as_array_ref()[l];
                 let t = &friction.tangent_impulse;
                 c.anchor.tangent_impulse = Vec2::new(lane(&t[0]), lane(&t[1]));
                 c.anchor.twist_impulse = lane(&friction.twist_impulse);

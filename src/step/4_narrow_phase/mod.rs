@@ -11,8 +11,7 @@ use bevy::prelude::*;
 
 use crate::geometry::{collide, collide_each, has_mesh};
 use crate::limits::MAX_MANIFOLDS_PER_STEP;
-#[cfg(target_arch = "x86_64")]
-use crate::math::lanes::three_operand;
+use crate::math::lanes::three_operand_copy;
 use crate::settings::SolverSettings;
 use crate::world::{ColliderEntry, Manifold, PhysicsWorld, STATIC, WarmStartCache};
 
@@ -171,37 +170,18 @@ fn run_cuts(pairs: &[(u32, u32)], cache: &WarmStartCache, runs: usize) -> Vec<(u
     cuts
 }
 
-/// The narrow phase of a run of pairs (the first at place `start` of the step's pairs),
-/// into `out`, looking the first pair up in the warm-start cache at place `next`;
-/// `speeds`: each collider's [`closing_speed`], m/s.
-fn collide_run(
-    world: &PhysicsWorld,
-    settings: &SolverSettings,
-    speeds: &[f32],
-    pairs: (&[(u32, u32)], usize),
-    next: usize,
-    out: &mut Found,
-) {
-    #[cfg(target_arch = "x86_64")]
-    if three_operand() {
-        // SAFETY: the CPU has the features (checked just above).
-        return unsafe { collide_vex(world, settings, speeds, pairs, next, out) };
-    }
-    collide_any(world, settings, speeds, pairs, next, out)
-}
-
-/// [`collide_any`] compiled for AVX2's three-operand forms (see [`three_operand`]).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx,avx2")]
-fn collide_vex(
-    world: &PhysicsWorld,
-    settings: &SolverSettings,
-    speeds: &[f32],
-    pairs: (&[(u32, u32)], usize),
-    next: usize,
-    out: &mut Found,
-) {
-    collide_any(world, settings, speeds, pairs, next, out)
+three_operand_copy! {
+    /// The narrow phase of a run of pairs (the first at place `start` of the step's pairs),
+    /// into `out`, looking the first pair up in the warm-start cache at place `next`;
+    /// `speeds`: each collider's [`closing_speed`], m/s.
+    fn collide_run / collide_vex => collide_any(
+        world: &PhysicsWorld,
+        settings: &SolverSettings,
+        speeds: &[f32],
+        pairs: (&[(u32, u32)], usize),
+        next: usize,
+        out: &mut Found,
+    )
 }
 
 #[inline(always)]

@@ -7,8 +7,7 @@ use bevy::prelude::*;
 use super::push_out::PushOutShares;
 use super::stiffness::{contact_softness, load_ratio, pair_size};
 use crate::collider::Shape;
-#[cfg(target_arch = "x86_64")]
-use crate::math::lanes::three_operand;
+use crate::math::lanes::three_operand_copy;
 use crate::world::{
     Anchoring, AngularRow, BodyState, COUPLINGS, ColliderEntry, ConstraintPoint, ContactConstraint,
     ContactKey, ContactParams, FrictionAnchor, MAX_POINTS, Manifold, NO_ROLL, RollingArms, STATIC,
@@ -220,36 +219,17 @@ type Shared<'a> = (
     (&'a [u32], &'a [f32]),
 );
 
-/// [`prepare_constraints`] of a run of manifolds, the first of which is manifold
-/// `first`, into `out` and `keys` (as long as the run); its rolling motions pushed onto
-/// `arms`.
-/// `Prepared::fixed` counts the run's own leading fixed contacts.
-fn prepare_run(
-    manifolds: &[Manifold],
-    first: usize,
-    shared: Shared,
-    out: (&mut [ContactConstraint], &mut [ContactKey]),
-    arms: &mut Vec<RollingArms>,
-) -> Prepared {
-    #[cfg(target_arch = "x86_64")]
-    if three_operand() {
-        // SAFETY: the CPU has the features (checked just above).
-        return unsafe { prepare_vex(manifolds, first, shared, out, arms) };
-    }
-    prepare_any(manifolds, first, shared, out, arms)
-}
-
-/// [`prepare_any`] compiled for AVX2's three-operand forms (see [`three_operand`]).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx,avx2")]
-fn prepare_vex(
-    manifolds: &[Manifold],
-    first: usize,
-    shared: Shared,
-    out: (&mut [ContactConstraint], &mut [ContactKey]),
-    arms: &mut Vec<RollingArms>,
-) -> Prepared {
-    prepare_any(manifolds, first, shared, out, arms)
+three_operand_copy! {
+    /// [`prepare_constraints`] of a run of manifolds, the first of which is manifold
+    /// `first`, into `out` and `keys` (as long as the run); its rolling motions pushed onto
+    /// `arms`. `Prepared::fixed` counts the run's own leading fixed contacts.
+    fn prepare_run / prepare_vex => prepare_any(
+        manifolds: &[Manifold],
+        first: usize,
+        shared: Shared,
+        out: (&mut [ContactConstraint], &mut [ContactKey]),
+        arms: &mut Vec<RollingArms>,
+    ) -> Prepared
 }
 
 #[inline(always)]

@@ -63,7 +63,7 @@ pub(super) fn store_impulses(
                 // Constraints are built one a manifold, in manifold order.
                 debug_assert_eq!(constraints[ci as usize].manifold, ci, "constraint order");
                 let m = &mut manifolds[ci as usize];
-                let lane = |x: &crate::math::lanes::F4| x.as_array_ref()[l];
+                let lane = |x: &crate::math::lanes::F8| x.as_array_ref()[l];
                 let (mut impulses, mut approach) = ([0.0; MAX_POINTS], [0.0; MAX_POINTS]);
                 for ((i, a), p) in impulses.iter_mut().zip(&mut approach).zip(points) {
                     (*i, *a) = (lane(&p.normal_impulse), lane(&p.relative_velocity));

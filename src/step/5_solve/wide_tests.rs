@@ -149,13 +149,17 @@ fn batched_passes_compute_the_scalar_passes_bit_for_bit() {
 }
 
 fn batched_passes_match_scalar() {
+    const BODIES: usize = 160;
+    const CONTACTS: usize = 400;
+    const FIXED: u32 = 60;
     let mut r = Rnd(0x5eed_0017);
     let h = 1.0 / 240.0;
     let mut lanes_used = (0, 0);
     for round in 0..40 {
-        let bodies: Vec<SolverBody> = (0..60).map(|_| random_body(&mut r)).collect();
-        let fixed = 30;
-        let mut scalar_constraints: Vec<ContactConstraint> = (0..200)
+        // Enough bodies that a level holds several batches of eight disjoint contacts.
+        let bodies: Vec<SolverBody> = (0..BODIES).map(|_| random_body(&mut r)).collect();
+        let fixed = FIXED as usize;
+        let mut scalar_constraints: Vec<ContactConstraint> = (0..CONTACTS)
             .map(|i| random_contact(&mut r, &bodies, i < fixed))
             .collect();
         let mut constraints = scalar_constraints.clone();
@@ -165,7 +169,8 @@ fn batched_passes_match_scalar() {
         let lanes = batches.batches.iter().flat_map(|b| b.contact);
         lanes_used.0 += lanes.filter(|&c| c != NO_CONTACT).count();
         lanes_used.1 += LANES * batches.batches.len();
-        let (all, fixed_list): (Vec<u32>, Vec<u32>) = ((0..200).collect(), (0..30).collect());
+        let (all, fixed_list): (Vec<u32>, Vec<u32>) =
+            ((0..CONTACTS as u32).collect(), (0..FIXED).collect());
         let (steps, fixed_steps) = (batches.steps.len(), batches.fixed_steps);
 
         let (mut lanes, mut scalar) = (bodies.clone(), bodies.clone());
