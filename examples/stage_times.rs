@@ -5,8 +5,9 @@
 //! many still move at the end.
 //!
 //! ```sh
-//! cargo run --release --example stage_times -- peers/scenes/large_pyramid.scene.ron 30 100
+//! cargo run --release --example stage_times -- peers/scenes/large_pyramid.scene.ron 30 100 [threads]
 //! ```
+//! `threads`: the compute pool's threads (default: Bevy's choice for this machine).
 
 use bevy::prelude::*;
 use tumble::prelude::*;
@@ -28,6 +29,11 @@ fn main() {
         .next()
         .map_or(30, |s| s.parse().expect("warm-up steps"));
     let timed: usize = args.next().map_or(100, |s| s.parse().expect("timed steps"));
+    if let Some(threads) = args.next() {
+        let n: usize = threads.parse().expect("threads");
+        let pool = || bevy::tasks::TaskPoolBuilder::new().num_threads(n).build();
+        bevy::tasks::ComputeTaskPool::get_or_init(pool);
+    }
     let scene = SceneDesc::load(&file).unwrap_or_else(|e| {
         eprintln!("{e}");
         std::process::exit(1);
