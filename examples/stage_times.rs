@@ -1,8 +1,8 @@
 //! Where a scene's step spends its time: loads a scene file, runs it headless (one step
-//! per update, sleeping off as in `peers/`), and prints each stage's median wall
-//! time over the timed steps with the step's counts (substeps, manifolds) and how far
-//! the bodies moved (the largest displacement of any body since it was spawned) and how
-//! many still move at the end.
+//! per update, sleeping off as in `peers/`), and prints each stage's median wall time
+//! over the timed steps (and the whole update's, as `peers/` times it) with the step's
+//! counts (substeps, manifolds) and how far the bodies moved (the largest displacement of
+//! any body since it was spawned) and how many still move at the end.
 //!
 //! ```sh
 //! cargo run --release --example stage_times -- peers/scenes/large_pyramid.scene.ron 30 100 [threads]
@@ -50,8 +50,11 @@ fn main() {
     let mut sweeps = Vec::with_capacity(timed);
     let mut reused = 0;
     let mut passes = (0u64, 0u64);
+    let mut wall = Vec::with_capacity(timed);
     for _ in 0..timed {
+        let started = std::time::Instant::now();
         app.update();
+        wall.push(started.elapsed().as_secs_f64() * 1e3);
         let t = app.world().resource::<StepTimings>();
         for (s, ms) in stages.iter_mut().zip(t.stage_ms) {
             s.push(ms);
@@ -90,6 +93,11 @@ fn main() {
         "  {:<14} {:8.3} ms (median step)",
         "total",
         median(&mut total)
+    );
+    println!(
+        "  {:<14} {:8.3} ms (median app.update(), the stages and all else)",
+        "update",
+        median(&mut wall)
     );
     let moved = bodies.iter().zip(&start);
     let moved = moved.filter_map(|(&e, &s)| Some((position(&app, e)? - s?, s?)));
