@@ -194,10 +194,10 @@ impl Lane for F8 {
 
 /// The CPU has AVX2. Hot loops are compiled twice, and on such a CPU run the copy that
 /// uses the three-operand (VEX) forms of the same SSE operations, which save the register
-/// copies the two-operand forms need. The operations are the same, with no fused
-/// multiply-add (that needs the `fma` feature, which is not enabled): the same bits. (The
-/// batched pass: a sixth fewer instructions on the 385-cube pyramid.) The answer is cached
-/// by std.
+/// copies the two-operand forms need (the four-lane batched pass had a sixth fewer
+/// instructions on the 385-cube pyramid), and whose batched passes compute in
+/// [`avx::Y8`], eight lanes an instruction. The operations are the same, with no fused multiply-add (that needs the
+/// `fma` feature, which is not enabled): the same bits. The answer is cached by std.
 #[cfg(target_arch = "x86_64")]
 #[inline]
 pub fn three_operand() -> bool {
