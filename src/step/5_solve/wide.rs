@@ -1,5 +1,6 @@
 //! The contact passes over the batches (see [`ContactBatches`](crate::world::ContactBatches)):
-//! eight contacts that share no moved body, solved side by side in [`F8`] lanes. Each lane does exactly what
+//! eight contacts that share no moved body, solved side by side in eight lanes (a
+//! [`Lane`] type: one AVX register where the CPU has it). Each lane does exactly what
 //! [`iterate`](super::iterate) does for one contact, in the same order (the scalar pass
 //! stays as the reference these are tested against, bit for bit). A batch holds its
 //! contacts lane by lane ([`ContactBatch`]) and gathers its bodies' velocities.
