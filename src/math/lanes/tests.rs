@@ -1,5 +1,7 @@
 //! The lanes against glam and f32, bit for bit; the AVX lanes against the stored ones.
 
+use bevy::prelude::*;
+
 use super::*;
 
 fn vectors(seed: u32) -> [Vec3; WIDTH] {

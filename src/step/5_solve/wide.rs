@@ -7,9 +7,9 @@
 
 #[cfg(target_arch = "x86_64")]
 use crate::math::lanes::avx::Y8;
-#[cfg(target_arch = "x86_64")]
-use crate::math::lanes::three_operand;
 use crate::math::lanes::{F8, Lane, Q8, V3, clamp, eq, gt, lanes, le, lt, max, neg, select};
+#[cfg(target_arch = "x86_64")]
+use crate::math::lanes::{three_operand, wide_registers};
 use crate::world::{
     AnchorLanes, BodyView, ContactBatch, FrictionLanes, LANES, MAX_POINTS, PointLanes, SolverBody,
     coupling_index,
@@ -295,19 +295,6 @@ dispatch! {
         use_bias: bool,
         measure: Option<&[AnchorLanes]>,
     ) -> u32
-}
-
-/// The CPU has AVX-512's 32 vector registers: the passes are compiled once more, and on
-/// such a CPU run the copy that may use them (fewer spills; the same operations, so the
-/// same bits). Checked once a pass; the answer is cached by std.
-#[cfg(target_arch = "x86_64")]
-#[inline]
-fn wide_registers() -> bool {
-    #[cfg(test)]
-    if crate::math::lanes::PLAIN_ONLY.get() {
-        return false;
-    }
-    std::is_x86_feature_detected!("avx512f") && std::is_x86_feature_detected!("avx512vl")
 }
 
 #[inline(always)]
