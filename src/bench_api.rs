@@ -106,7 +106,12 @@ impl ContactPass {
         app.world_mut()
             .resource_mut::<crate::effects::Effects>()
             .sleeping = false;
-        for _ in 0..steps {
+        for step in 0..steps {
+            if step + 1 == steps {
+                // The last step keeps every contact's constraint, to be packed here.
+                let mut world = app.world_mut().resource_mut::<crate::PhysicsWorld>();
+                world.keep_constraints = true;
+            }
             app.update();
         }
         let world = app.world().resource::<crate::PhysicsWorld>();

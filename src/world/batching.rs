@@ -20,6 +20,7 @@ use crate::math::lanes::three_operand_copy;
 
 use super::{
     AnchorLanes, ContactBatch, ContactConstraint, FrictionLanes, PointLanes, STATIC, SolverBody,
+    body,
 };
 
 /// Contacts solved side by side in one batch (an AVX register's eight f32 lanes).
@@ -53,6 +54,8 @@ pub(crate) struct ContactBatches {
     pub friction: Vec<FrictionLanes>,
     /// The pass: batches and scalar contacts, the contacts with fixed colliders first.
     pub steps: Vec<SolveStep>,
+    /// The contacts of the scalar steps, in pass order.
+    pub scalar: Vec<u32>,
     /// How many steps, at the front, are those of the contacts with fixed colliders
     /// (which each pass runs again at its end).
     pub fixed_steps: usize,
@@ -103,11 +106,10 @@ fn scalar_only(c: &ContactConstraint) -> bool {
     c.anchoring.rolls() || c.refresh || c.report
 }
 
-/// What packing reads of a contact, beside its constraint (the same index): its bodies,
-/// whether the contacts move each, and whether only the scalar pass may solve it. Twelve
-/// bytes written as the constraint is built: packing's first sweep read each of these
-/// from its 648-byte constraint and each body's masses from its solver body, and that
-/// sweep was two thirds of the packing on 100 pyramids.
+/// What packing reads of a contact: its bodies, whether the contacts move each, whether
+/// only the scalar pass may solve it, and its point count. Twelve bytes, made from the
+/// manifold before the contact is built ([`ContactKey::new`]), so that a contact can be
+/// built straight into the lanes of its batch.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct ContactKey {
     /// Body indices, or [`STATIC`].
@@ -117,40 +119,40 @@ pub(crate) struct ContactKey {
     pub moved: [bool; 2],
     /// See [`SolveStep::Scalar`].
     pub scalar: bool,
+    /// Contact points.
+    pub len: u8,
 }
 
 impl ContactKey {
     /// The key of constraint `c` among `bodies`.
     pub(crate) fn of(c: &ContactConstraint, bodies: &[SolverBody]) -> Self {
-        Self {
-            a: c.a,
-            b: c.b,
-            moved: [
-                moved_by_contacts(bodies, c.a),
-                moved_by_contacts(bodies, c.b),
-            ],
-            scalar: scalar_only(c),
-        }
+        let (a, b) = (body(bodies, c.a), body(bodies, c.b));
+        Self::new((c.a, c.b), [&a, &b], scalar_only(c), c.len)
     }
 
-    /// The key of constraint `c` whose two solver bodies (the shared static one for a
-    /// static side) are `sides`, as the constraint is built.
-    #[inline]
-    pub(crate) fn of_sides(c: &ContactConstraint, sides: [&SolverBody; 2]) -> Self {
+    /// The key of a contact between bodies `a` and `b` (indices or [`STATIC`]) whose
+    /// solver bodies (the shared static one for a static side) are `sides`.
+    #[inline(always)]
+    pub(crate) fn new(
+        (a, b): (u32, u32),
+        sides: [&SolverBody; 2],
+        scalar: bool,
+        len: usize,
+    ) -> Self {
         Self {
-            a: c.a,
-            b: c.b,
+            a,
+            b,
             moved: sides.map(moves),
-            scalar: scalar_only(c),
+            scalar,
+            len: len as u8,
         }
     }
 }
 
 three_operand_copy! {
-    /// [`ContactBatches::build_keyed`].
-    fn build_run / build_vex => build_any(
+    /// [`ContactBatches::pack_keyed`].
+    fn pack_run / pack_vex => pack_any(
         this: &mut ContactBatches,
-        constraints: &[ContactConstraint],
         keys: &[ContactKey],
         bodies: &[SolverBody],
         fixed: usize,
@@ -158,35 +160,21 @@ three_operand_copy! {
 }
 
 #[inline(always)]
-fn build_any(
-    this: &mut ContactBatches,
-    constraints: &[ContactConstraint],
-    keys: &[ContactKey],
-    bodies: &[SolverBody],
-    fixed: usize,
-) {
-    debug_assert_eq!(keys.len(), constraints.len(), "one key a constraint");
-    debug_assert!(
-        (constraints.iter().zip(keys)).all(|(c, k)| ContactKey::of(c, bodies) == *k),
-        "keys out of date"
-    );
+fn pack_any(this: &mut ContactBatches, keys: &[ContactKey], bodies: &[SolverBody], fixed: usize) {
     this.batches.clear();
     this.points.clear();
     this.anchors.clear();
     this.friction.clear();
     this.steps.clear();
+    this.scalar.clear();
     this.stamp.clear();
     this.stamp.resize(bodies.len(), 0);
-    this.pack(constraints, keys, bodies, 0..fixed);
+    this.pack(keys, 0..fixed);
     this.fixed_steps = this.steps.len();
     this.fixed_batches = this.batches.len();
-    this.pack(constraints, keys, bodies, fixed..constraints.len());
-    debug_assert!(this.is_valid(constraints, bodies), "a batch shares a body");
+    this.pack(keys, fixed..keys.len());
+    debug_assert!(this.is_valid(keys, bodies), "a batch shares a body");
 }
-
-/// How many contacts ahead of the one being packed its constraint is fetched: a level's
-/// contacts sit all over the constraint list, and each is 648 bytes.
-const PREFETCH_AHEAD: usize = 8;
 
 /// Asks the CPU for all of `x`'s cache lines, to be read or written soon (on x86_64; no
 /// effect elsewhere).
@@ -206,7 +194,9 @@ pub(crate) fn prefetch<T>(x: &T) {
 }
 
 impl ContactBatches {
-    /// [`build_keyed`](Self::build_keyed) with the keys made here.
+    /// Packs `constraints` and fills the batches' lanes from them (the tests' and
+    /// benchmarks' way; a step builds each contact straight into its lanes, see the
+    /// solver's `prepare_contacts`).
     #[cfg(any(test, feature = "bench-internals"))]
     pub(crate) fn build(
         &mut self,
@@ -218,20 +208,27 @@ impl ContactBatches {
             .iter()
             .map(|c| ContactKey::of(c, bodies))
             .collect();
-        self.build_keyed(constraints, &keys, bodies, fixed);
+        self.pack_keyed(&keys, bodies, fixed);
+        for (j, batch) in self.batches.iter_mut().enumerate() {
+            let range = batch.range();
+            let (point, anchor) = (&mut self.points[range.clone()], &mut self.anchors[range]);
+            let contact = batch.contact;
+            for (l, &ci) in contact.iter().enumerate() {
+                if ci != NO_CONTACT {
+                    let c = &constraints[ci as usize];
+                    let lanes = (&mut *point, &mut *anchor);
+                    batch.set_lane(l, c, bodies, lanes, &mut self.friction[j]);
+                }
+            }
+        }
     }
 
-    /// Packs `constraints`, whose first `fixed` are the contacts with fixed colliders
-    /// (packed on their own, so that a pass can run them again); `keys`, one a
-    /// constraint, as [`ContactKey::of`] makes them.
-    pub(crate) fn build_keyed(
-        &mut self,
-        constraints: &[ContactConstraint],
-        keys: &[ContactKey],
-        bodies: &[SolverBody],
-        fixed: usize,
-    ) {
-        build_run(self, constraints, keys, bodies, fixed);
+    /// Packs the contacts of `keys` (one a contact, see [`ContactKey::new`]), whose
+    /// first `fixed` are the contacts with fixed colliders (packed on their own, so that
+    /// a pass can run them again), into batches whose lanes are left to fill
+    /// ([`ContactBatch::set_lane`]) and the scalar steps.
+    pub(crate) fn pack_keyed(&mut self, keys: &[ContactKey], bodies: &[SolverBody], fixed: usize) {
+        pack_run(self, keys, bodies, fixed);
     }
 
     /// Packs one part by levels: a contact's level is one more than the highest level
@@ -240,13 +237,7 @@ impl ContactBatches {
     /// no moved body. Each level is cut into batches in contact order; its scalar
     /// contacts follow its batches. Linear in the contacts.
     #[inline(always)]
-    fn pack(
-        &mut self,
-        constraints: &[ContactConstraint],
-        keys: &[ContactKey],
-        bodies: &[SolverBody],
-        range: Range<usize>,
-    ) {
+    fn pack(&mut self, keys: &[ContactKey], range: Range<usize>) {
         // Per body: one more than the level of its last contact in this part (0: none).
         self.stamp.iter_mut().for_each(|s| *s = 0);
         self.level.clear();
@@ -290,23 +281,12 @@ impl ContactBatches {
             let first = self.batches.len();
             let mut lanes = [NO_CONTACT; LANES];
             let mut n = 0;
-            let ahead = |j: usize| {
-                if let Some(&c) = contacts.get(j + PREFETCH_AHEAD) {
-                    prefetch(&constraints[c as usize]);
-                }
-            };
-            for (_, &c) in contacts
-                .iter()
-                .enumerate()
-                .inspect(|&(j, _)| ahead(j))
-                .filter(|&(_, &c)| !keys[c as usize].scalar)
-            {
+            for &c in contacts.iter().filter(|&&c| !keys[c as usize].scalar) {
                 lanes[n] = c;
                 n += 1;
                 if n == LANES {
-                    let batch = ContactBatch::new(
-                        (constraints, keys),
-                        bodies,
+                    let batch = ContactBatch::empty(
+                        keys,
                         lanes,
                         (&mut self.points, &mut self.anchors),
                         &mut self.friction,
@@ -318,9 +298,8 @@ impl ContactBatches {
             // A batch of few lanes costs about what a full one does: its contacts go to
             // the scalar pass (the same bits; a chain or a tower has one contact a level).
             let lone = if n >= MIN_LANES {
-                let batch = ContactBatch::new(
-                    (constraints, keys),
-                    bodies,
+                let batch = ContactBatch::empty(
+                    keys,
                     lanes,
                     (&mut self.points, &mut self.anchors),
                     &mut self.friction,
@@ -334,10 +313,12 @@ impl ContactBatches {
                 self.steps
                     .push(SolveStep::Batches(first..self.batches.len()));
             }
-            self.steps
-                .extend(lanes[..lone].iter().map(|&c| SolveStep::Scalar(c)));
+            let first_scalar = self.scalar.len();
+            self.scalar.extend_from_slice(&lanes[..lone]);
             let scalar = contacts.iter().filter(|&&c| keys[c as usize].scalar);
-            self.steps.extend(scalar.map(|&c| SolveStep::Scalar(c)));
+            self.scalar.extend(scalar);
+            let steps = self.scalar[first_scalar..].iter();
+            self.steps.extend(steps.map(|&c| SolveStep::Scalar(c)));
         }
     }
 
@@ -357,17 +338,13 @@ impl ContactBatches {
 
     /// The invariant the lanes rely on: no two contacts of a batch share a moved body,
     /// and every contact is solved exactly once.
-    pub(crate) fn is_valid(
-        &self,
-        constraints: &[ContactConstraint],
-        bodies: &[SolverBody],
-    ) -> bool {
-        let mut seen = vec![0u8; constraints.len()];
+    pub(crate) fn is_valid(&self, keys: &[ContactKey], bodies: &[SolverBody]) -> bool {
+        let mut seen = vec![0u8; keys.len()];
         for batch in &self.batches {
             let lanes = batch.contact.iter().filter(|&&c| c != NO_CONTACT);
             let mut moved: Vec<u32> = lanes
                 .clone()
-                .flat_map(|&c| [constraints[c as usize].a, constraints[c as usize].b])
+                .flat_map(|&c| [keys[c as usize].a, keys[c as usize].b])
                 .filter(|&i| moved_by_contacts(bodies, i))
                 .collect();
             let n = moved.len();

@@ -135,6 +135,7 @@ impl PointLanes {
         separation: F8::ZERO,
     };
 
+    #[cfg(any(test, feature = "bench-internals"))]
     fn set(&mut self, l: usize, p: &ConstraintPoint) {
         self.normal_ra.set(l, p.normal_row.ra);
         self.normal_rb.set(l, p.normal_row.rb);
@@ -154,23 +155,23 @@ impl PointLanes {
 }
 
 impl ContactBatch {
-    /// The batch of the listed constraints, its points appended to `points` and
-    /// `anchors` and its friction impulses to `friction`.
+    /// The batch of the listed contacts with its lanes not yet filled: their bodies and
+    /// point count from `keys` (see [`set_lane`](Self::set_lane)), their points
+    /// appended to `points` and `anchors` and their friction impulses to `friction`,
+    /// zero.
     #[inline(always)]
-    pub(crate) fn new(
-        (constraints, keys): (&[ContactConstraint], &[ContactKey]),
-        bodies: &[SolverBody],
+    pub(crate) fn empty(
+        keys: &[ContactKey],
         contact: [u32; LANES],
         (points, anchors): (&mut Vec<PointLanes>, &mut Vec<AnchorLanes>),
         friction: &mut Vec<FrictionLanes>,
     ) -> Self {
-        let mut rubbing = FrictionLanes::default();
         let first = points.len();
-        let len = |ci: u32| (ci != NO_CONTACT).then(|| constraints[ci as usize].len);
+        let len = |ci: u32| (ci != NO_CONTACT).then(|| keys[ci as usize].len as usize);
         let most = contact.iter().filter_map(|&ci| len(ci)).max().unwrap_or(0);
         points.resize(first + most, PointLanes::ZERO);
         anchors.resize(first + most, AnchorLanes::ZERO);
-        let (point, anchor) = (&mut points[first..], &mut anchors[first..]);
+        friction.push(FrictionLanes::default());
         let mut b = Self {
             contact,
             a: [STATIC; LANES],
@@ -195,60 +196,84 @@ impl ContactBatch {
             points: most as u32,
         };
         for (l, &ci) in contact.iter().enumerate() {
-            if ci == NO_CONTACT {
-                continue;
-            }
-            let c = &constraints[ci as usize];
-            (b.a[l], b.b[l]) = (c.a, c.b);
-            b.moved[0][l] = keys[ci as usize].moved[0];
-            b.moved[1][l] = keys[ci as usize].moved[1];
-            b.normal.set(l, c.normal);
-            debug_assert_eq!((c.tangent1, c.tangent2), c.normal.any_orthonormal_pair());
-            for (side, i) in [c.a, c.b].into_iter().enumerate() {
-                let m = body(bodies, i).inv_inertia;
-                debug_assert_eq!(m, Mat3::from_diagonal(Vec3::splat(m.x_axis.x)), "batched");
-                set(&mut b.inv_inertia[side], l, m.x_axis.x);
-            }
-            for side in 0..2 {
-                set(
-                    &mut b.turn[side],
-                    l,
-                    if c.anchoring.turn[side] { ALL } else { 0.0 },
-                );
-            }
-            set(&mut b.friction, l, c.friction);
-            set(&mut b.approach_gain, l, c.approach_gain);
-            set(&mut b.bias_rate, l, c.softness.bias_rate);
-            set(&mut b.mass_scale, l, c.softness.mass_scale);
-            set(&mut b.impulse_scale, l, c.softness.impulse_scale);
-            set(&mut b.max_push, l, c.max_push);
-            for (lanes, &k) in b.coupling.iter_mut().zip(&c.coupling) {
-                set(lanes, l, k);
-            }
-            let f = &c.anchor;
-            for (k, row) in f.tangent_rows.iter().enumerate() {
-                b.tangent_ra[k].set(l, row.ra);
-                b.tangent_rb[k].set(l, row.rb);
-            }
-            set(&mut b.tangent_mass, l, f.tangent_mass);
-            set(&mut b.twist_mass, l, f.twist_mass);
-            set(&mut rubbing.tangent_impulse[0], l, f.tangent_impulse.x);
-            set(&mut rubbing.tangent_impulse[1], l, f.tangent_impulse.y);
-            set(&mut rubbing.twist_impulse, l, f.twist_impulse);
-            for k in 0..c.len {
-                set(&mut b.has[k], l, ALL);
-                point[k].set(l, &c.points[k]);
-                anchor[k].ra.set(l, c.points[k].ra);
-                anchor[k].rb.set(l, c.points[k].rb);
-                set(
-                    &mut anchor[k].adjusted_separation,
-                    l,
-                    c.points[k].adjusted_separation,
-                );
+            if ci != NO_CONTACT {
+                let k = &keys[ci as usize];
+                (b.a[l], b.b[l]) = (k.a, k.b);
+                b.moved[0][l] = k.moved[0];
+                b.moved[1][l] = k.moved[1];
             }
         }
-        friction.push(rubbing);
         b
+    }
+
+    /// Lane `l` from its contact's constraint `c` (the lane's bodies and the batch's
+    /// point count set by [`empty`](Self::empty)): `point` and `anchor` are the batch's
+    /// points, `rubbing` its friction impulses.
+    #[cfg(any(test, feature = "bench-internals"))]
+    #[inline(always)]
+    pub(crate) fn set_lane(
+        &mut self,
+        l: usize,
+        c: &ContactConstraint,
+        bodies: &[SolverBody],
+        (point, anchor): (&mut [PointLanes], &mut [AnchorLanes]),
+        rubbing: &mut FrictionLanes,
+    ) {
+        self.set_header(l, c, bodies);
+        let b = self;
+        for (lanes, &k) in b.coupling.iter_mut().zip(&c.coupling) {
+            set(lanes, l, k);
+        }
+        let f = &c.anchor;
+        for (k, row) in f.tangent_rows.iter().enumerate() {
+            b.tangent_ra[k].set(l, row.ra);
+            b.tangent_rb[k].set(l, row.rb);
+        }
+        set(&mut b.tangent_mass, l, f.tangent_mass);
+        set(&mut b.twist_mass, l, f.twist_mass);
+        set(&mut rubbing.tangent_impulse[0], l, f.tangent_impulse.x);
+        set(&mut rubbing.tangent_impulse[1], l, f.tangent_impulse.y);
+        set(&mut rubbing.twist_impulse, l, f.twist_impulse);
+        for k in 0..c.len {
+            set(&mut b.has[k], l, ALL);
+            point[k].set(l, &c.points[k]);
+            anchor[k].ra.set(l, c.points[k].ra);
+            anchor[k].rb.set(l, c.points[k].rb);
+            set(
+                &mut anchor[k].adjusted_separation,
+                l,
+                c.points[k].adjusted_separation,
+            );
+        }
+    }
+
+    /// Lane `l`'s header from its contact's constraint `c` (whose points need not be
+    /// built): its normal, inertias, turning anchors, friction and softness.
+    #[inline(always)]
+    pub(crate) fn set_header(&mut self, l: usize, c: &ContactConstraint, bodies: &[SolverBody]) {
+        let b = self;
+        debug_assert_eq!((b.a[l], b.b[l]), (c.a, c.b), "the lane's contact");
+        debug_assert!(c.len <= b.points as usize, "the batch holds the points");
+        b.normal.set(l, c.normal);
+        debug_assert_eq!((c.tangent1, c.tangent2), c.normal.any_orthonormal_pair());
+        for (side, i) in [c.a, c.b].into_iter().enumerate() {
+            let m = body(bodies, i).inv_inertia;
+            debug_assert_eq!(m, Mat3::from_diagonal(Vec3::splat(m.x_axis.x)), "batched");
+            set(&mut b.inv_inertia[side], l, m.x_axis.x);
+        }
+        for side in 0..2 {
+            set(
+                &mut b.turn[side],
+                l,
+                if c.anchoring.turn[side] { ALL } else { 0.0 },
+            );
+        }
+        set(&mut b.friction, l, c.friction);
+        set(&mut b.approach_gain, l, c.approach_gain);
+        set(&mut b.bias_rate, l, c.softness.bias_rate);
+        set(&mut b.mass_scale, l, c.softness.mass_scale);
+        set(&mut b.impulse_scale, l, c.softness.impulse_scale);
+        set(&mut b.max_push, l, c.max_push);
     }
 
     /// The lanes' friction tangents, as each constraint has them

@@ -276,9 +276,14 @@ pub struct PhysicsWorld {
     /// Overlaps with a [`Sensor`](crate::layers::Sensor) this step: manifolds the solver
     /// never sees, only the collision events.
     pub(crate) sensor_overlaps: Vec<Manifold>,
-    /// Per-point contact constraints built by the solver.
+    /// Contact constraints built by the solver, one place a manifold: those of the
+    /// contacts the scalar pass solves, of those with fixed colliders, and all when one
+    /// bounces or `keep_constraints` asks (a batched contact is built straight into its
+    /// lanes; its place holds whatever it held).
     pub(crate) constraints: Vec<ContactConstraint>,
-    /// What packing reads of each constraint (the same index).
+    /// Keep every contact's constraint (tests and benchmarks that read them).
+    pub(crate) keep_constraints: bool,
+    /// What packing reads of each contact (the same index).
     pub(crate) contact_keys: Vec<ContactKey>,
     /// The turning arms of the few constraints with a rolling off-centre sphere
     /// (`Anchoring::roll` indexes it).

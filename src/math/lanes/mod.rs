@@ -103,7 +103,7 @@ impl F8 {
         unsafe { &mut *(self as *mut Self).cast::<[f32; WIDTH]>() }
     }
 
-    #[inline(always)]
+    #[cfg(test)]
     pub fn to_array(self) -> [f32; WIDTH] {
         *self.as_array_ref()
     }
@@ -230,6 +230,26 @@ macro_rules! three_operand_copy {
         #[target_feature(enable = "avx,avx2")]
         fn $vex($($arg: $ty),*) $(-> $ret)? {
             $any($($arg),*)
+        }
+    };
+    // The same, for an `$any` generic over the lanes it computes in: `$plain` in the
+    // plain copy, `$wide` in the AVX2 one.
+    ($(#[$doc:meta])* $vis:vis fn $name:ident / $vex:ident => $any:ident::<$plain:ty, $wide:ty>
+        ($($arg:ident: $ty:ty),* $(,)?) $(-> $ret:ty)?) => {
+        $(#[$doc])*
+        $vis fn $name($($arg: $ty),*) $(-> $ret)? {
+            #[cfg(target_arch = "x86_64")]
+            if $crate::math::lanes::three_operand() {
+                // SAFETY: the CPU has the features (checked just above).
+                return unsafe { $vex($($arg),*) };
+            }
+            $any::<$plain>($($arg),*)
+        }
+
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = "avx,avx2")]
+        fn $vex($($arg: $ty),*) $(-> $ret)? {
+            $any::<$wide>($($arg),*)
         }
     };
 }

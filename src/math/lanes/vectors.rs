@@ -6,7 +6,7 @@ use bevy::prelude::*;
 use super::{F8, Lane, WIDTH, lanes, neg, select};
 
 /// Eight 3-vectors.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub struct V3<L = F8> {
     pub x: L,
     pub y: L,
@@ -31,7 +31,11 @@ impl V3 {
     /// Lane `l` as a vector.
     #[inline(always)]
     pub fn lane(&self, l: usize) -> Vec3 {
-        let (x, y, z) = (self.x.to_array(), self.y.to_array(), self.z.to_array());
+        let (x, y, z) = (
+            self.x.as_array_ref(),
+            self.y.as_array_ref(),
+            self.z.as_array_ref(),
+        );
         Vec3::new(x[l], y[l], z[l])
     }
 

@@ -7,11 +7,10 @@ use bevy::prelude::*;
 use super::push_out::PushOutShares;
 use super::stiffness::{contact_softness, load_ratio, pair_size};
 use crate::collider::Shape;
-use crate::math::lanes::three_operand_copy;
 use crate::world::{
-    Anchoring, AngularRow, BodyState, COUPLINGS, ColliderEntry, ConstraintPoint, ContactConstraint,
-    ContactKey, ContactParams, FrictionAnchor, MAX_POINTS, Manifold, NO_ROLL, RollingArms, STATIC,
-    SolverBody, body, is_isotropic, normal_couplings, prefetch, row_velocity,
+    Anchoring, AngularRow, BodyState, BodyView, COUPLINGS, ColliderEntry, ConstraintPoint,
+    ContactConstraint, ContactKey, ContactParams, FrictionAnchor, MAX_POINTS, Manifold, NO_ROLL,
+    RollingArms, STATIC, SolverBody, body, is_isotropic, normal_couplings, prefetch, row_velocity,
 };
 
 /// A turning sphere's centre from its body's centre of mass (zero when they coincide,
@@ -105,8 +104,8 @@ fn plane_distance(d: Vec3, normal: Vec3) -> f32 {
     (d - normal * normal.dot(d)).length()
 }
 
-/// What [`prepare_constraints`] found out about the step's constraints while building
-/// them, so that no later pass reads the 648-byte constraints for a flag. (Measured on
+/// What [`prepare_contacts`](super::prepare_contacts::prepare_contacts) found out about
+/// the step's contacts while building them, so that no later pass reads the 648-byte constraints for a flag. (Measured on
 /// the 5,050-cube pyramid: inside the noise; it is less work, not a visible win.)
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Prepared {
@@ -135,170 +134,163 @@ pub struct Prepared {
 /// on each other) from 2.47 to 1.60.
 pub const SQUEEZE_RATIO: f32 = 10.0;
 
-/// Manifolds from which the solver splits [`prepare_constraints`] between two threads
-/// (when the compute pool has them): a helper takes about 30 µs to wake. (On the
-/// 385-cube pyramid's 2,432 manifolds, splitting from 1,024 or from 4,096 measured the
-/// same within the noise; on 100 pyramids' 14,500 it took 1.2-1.4 ms off the step.)
-pub const PARALLEL_PREPARE_FROM: usize = 1024;
-
-/// Builds the constraint of every manifold into `out` (one a manifold, in order), and
-/// says what it found ([`Prepared`]). `overlaps` and `heaviest`: per body, as the survey
-/// found them (`survey::PerBody`). With `split`, the second half is built on the compute
-/// pool (another thread if it has one) while the caller builds the first; each
-/// constraint depends only on its manifold, so the result is the same bits.
-pub fn prepare_constraints(
-    manifolds: &[Manifold],
-    colliders: &[ColliderEntry],
-    states: &[BodyState],
-    bodies: &[SolverBody],
+/// What building a contact reads besides its manifold: the scene's colliders, bodies and
+/// solver bodies, the contact settings, and per body the survey's counts of overlaps and
+/// heaviest body pressing on it (`survey::PerBody`). Each contact depends only on its
+/// manifold and these, so contacts can be built in any order, on any thread.
+pub(super) struct Builder<'a> {
+    colliders: &'a [ColliderEntry],
+    states: &'a [BodyState],
+    pub(super) bodies: &'a [SolverBody],
     stiffness: ContactParams,
-    per_body: (&[u32], &[f32]),
-    (out, keys): (&mut Vec<ContactConstraint>, &mut Vec<ContactKey>),
-    arms: &mut Vec<RollingArms>,
-    split: bool,
-) -> Prepared {
-    out.resize_with(manifolds.len(), ContactConstraint::default);
-    keys.resize(manifolds.len(), ContactKey::default());
-    arms.clear();
-    let shared = (colliders, states, bodies, stiffness, per_body);
-    if !split {
-        return prepare_run(manifolds, 0, shared, (out, keys), arms);
+    overlaps: &'a [u32],
+    heaviest: &'a [f32],
+    shares: PushOutShares,
+    /// Closing or parting slower than this, m/s, is resting: gravity changes speed so
+    /// much in two steps.
+    resting_speed: f32,
+}
+
+/// What a contact's key and its constraint both need: whether each side turns, and how
+/// its anchors roll.
+struct Sides {
+    spin: [bool; 2],
+    arm: [Vec3; 2],
+    axis: [Vec3; 2],
+    refresh: bool,
+    report: bool,
+}
+
+impl Sides {
+    fn rolls(&self) -> bool {
+        self.arm != [Vec3::ZERO; 2] || self.axis != [Vec3::ZERO; 2]
     }
-    let half = manifolds.len() / 2;
-    let (first, second) = manifolds.split_at(half);
-    let (out_first, out_second) = out.split_at_mut(half);
-    let (keys_first, keys_second) = keys.split_at_mut(half);
-    // (Allocates only if the second half has a rolling contact.)
-    let mut second_arms = Vec::new();
-    let mut found = [None, None];
-    bevy::tasks::ComputeTaskPool::get().scope(|scope| {
-        let [f0, f1] = &mut found;
-        let arms1 = &mut second_arms;
-        scope.spawn(async move {
-            *f1 = Some(prepare_run(
-                second,
-                half,
-                shared,
-                (out_second, keys_second),
-                arms1,
-            ));
-        });
-        *f0 = Some(prepare_run(first, 0, shared, (out_first, keys_first), arms));
-    });
-    let [Some(f0), Some(f1)] = found else {
-        unreachable!("both halves ran");
-    };
-    // The second half's rolling motions after the first's.
-    if !second_arms.is_empty() {
-        let offset = arms.len() as u32;
-        for c in out[half..].iter_mut().filter(|c| c.anchoring.rolls()) {
-            c.anchoring.roll += offset;
+}
+
+impl<'a> Builder<'a> {
+    pub(super) fn new(
+        colliders: &'a [ColliderEntry],
+        states: &'a [BodyState],
+        bodies: &'a [SolverBody],
+        stiffness: ContactParams,
+        (overlaps, heaviest): (&'a [u32], &'a [f32]),
+    ) -> Self {
+        Self {
+            colliders,
+            states,
+            bodies,
+            stiffness,
+            overlaps,
+            heaviest,
+            shares: PushOutShares::new(stiffness.max_push_out),
+            resting_speed: 2.0 * stiffness.gravity * stiffness.dt,
         }
-        arms.append(&mut second_arms);
     }
-    Prepared {
-        ratio: f0.ratio.max(f1.ratio),
-        relax_ratio: f0.relax_ratio.max(f1.relax_ratio),
-        fixed: f0.fixed + if f0.fixed == half { f1.fixed } else { 0 },
-        refresh: f0.refresh || f1.refresh,
-        report: f0.report || f1.report,
-        bounce: f0.bounce || f1.bounce,
-    }
-}
 
-/// How many manifolds ahead of the one being prepared its bodies and constraint are
-/// fetched (its colliders twice as far).
-const PREFETCH_AHEAD: usize = 4;
-
-/// What every constraint reads besides its manifold.
-type Shared<'a> = (
-    &'a [ColliderEntry],
-    &'a [BodyState],
-    &'a [SolverBody],
-    ContactParams,
-    (&'a [u32], &'a [f32]),
-);
-
-three_operand_copy! {
-    /// [`prepare_constraints`] of a run of manifolds, the first of which is manifold
-    /// `first`, into `out` and `keys` (as long as the run); its rolling motions pushed onto
-    /// `arms`. `Prepared::fixed` counts the run's own leading fixed contacts.
-    fn prepare_run / prepare_vex => prepare_any(
-        manifolds: &[Manifold],
-        first: usize,
-        shared: Shared,
-        out: (&mut [ContactConstraint], &mut [ContactKey]),
-        arms: &mut Vec<RollingArms>,
-    ) -> Prepared
-}
-
-#[inline(always)]
-fn prepare_any(
-    manifolds: &[Manifold],
-    first: usize,
-    (colliders, states, bodies, stiffness, (overlaps, heaviest)): Shared,
-    (out, keys): (&mut [ContactConstraint], &mut [ContactKey]),
-    arms: &mut Vec<RollingArms>,
-) -> Prepared {
-    debug_assert_eq!(manifolds.len(), out.len(), "one constraint a manifold");
-    debug_assert_eq!(manifolds.len(), keys.len(), "one key a manifold");
-    let count = |body: u32| {
-        if body == STATIC {
-            0
+    /// A collider's body's centre of mass at the start of the step (a static collider's
+    /// own position).
+    #[inline(always)]
+    fn centre(&self, c: &ColliderEntry) -> Vec3 {
+        if c.body == STATIC {
+            c.pos
         } else {
-            overlaps[body as usize]
+            self.states[c.body as usize].x0
         }
-    };
-    let anisotropic = |i: u32| i != STATIC && !is_isotropic(states[i as usize].inv_inertia);
-    let shares = PushOutShares::new(stiffness.max_push_out);
-    // Closing or parting slower than gravity changes speed in two steps.
-    let resting_speed = 2.0 * stiffness.gravity * stiffness.dt;
-    let mut found = Prepared {
-        ratio: 1.0,
-        relax_ratio: 1.0,
-        fixed: 0,
-        refresh: false,
-        report: false,
-        bounce: false,
-    };
-    for (mi, m) in manifolds.iter().enumerate() {
-        // What a later manifold reads and writes, fetched ahead: its colliders (a scene's
-        // colliders by index, in no order the manifolds follow), then, once they have
-        // come, its bodies, and the constraint it fills.
-        if let Some(next) = manifolds.get(mi + 2 * PREFETCH_AHEAD) {
-            prefetch(&colliders[next.a as usize]);
-            prefetch(&colliders[next.b as usize]);
+    }
+
+    #[inline(always)]
+    fn sides(
+        &self,
+        (ca, cb): (&ColliderEntry, &ColliderEntry),
+        (sa, sb): (&SolverBody, &SolverBody),
+    ) -> Sides {
+        let anisotropic =
+            |i: u32| i != STATIC && !is_isotropic(self.states[i as usize].inv_inertia);
+        let spin = [spins(sa), spins(sb)];
+        let arm = [
+            sphere_arm(ca, spin[0], self.centre(ca)),
+            sphere_arm(cb, spin[1], self.centre(cb)),
+        ];
+        let axis = [
+            symmetry_axis(ca, spin[0], self.centre(ca)),
+            symmetry_axis(cb, spin[1], self.centre(cb)),
+        ];
+        Sides {
+            spin,
+            arm,
+            axis,
+            refresh: (spin[0] && (anisotropic(ca.body) || arm[0] != Vec3::ZERO))
+                || (spin[1] && (anisotropic(cb.body) || arm[1] != Vec3::ZERO)),
+            report: ca.filter.events || cb.filter.events,
         }
-        if let Some(next) = manifolds.get(mi + PREFETCH_AHEAD) {
-            for i in [
-                colliders[next.a as usize].body,
-                colliders[next.b as usize].body,
-            ] {
-                if i != STATIC {
-                    prefetch(&states[i as usize]);
-                    prefetch(&bodies[i as usize]);
-                }
+    }
+
+    /// Manifold `m`'s key: what packing needs before its contact is built.
+    #[inline(always)]
+    pub(super) fn key(&self, m: &Manifold) -> ContactKey {
+        let (ca, cb) = (&self.colliders[m.a as usize], &self.colliders[m.b as usize]);
+        let (sa, sb) = (self.bodies.at(ca.body), self.bodies.at(cb.body));
+        let sides = self.sides((ca, cb), (sa, sb));
+        let scalar = sides.rolls() || sides.refresh || sides.report;
+        ContactKey::new((ca.body, cb.body), [sa, sb], scalar, m.len)
+    }
+
+    /// Asks the CPU for what building manifold `m`'s contact reads after the manifold:
+    /// its colliders, or (`bodies`), once those have come, its bodies.
+    #[inline(always)]
+    pub(super) fn prefetch(&self, m: &Manifold, bodies: bool) {
+        for c in [m.a, m.b] {
+            let c = &self.colliders[c as usize];
+            if !bodies {
+                prefetch(c);
+            } else if c.body != STATIC {
+                prefetch(&self.states[c.body as usize]);
+                prefetch(&self.bodies[c.body as usize]);
             }
-            prefetch(&out[mi + PREFETCH_AHEAD]);
         }
-        let (ca, cb) = (&colliders[m.a as usize], &colliders[m.b as usize]);
-        let centre = |c: &ColliderEntry| {
-            if c.body == STATIC {
-                c.pos
-            } else {
-                states[c.body as usize].x0
-            }
-        };
-        let (sa, sb) = (body(bodies, ca.body), body(bodies, cb.body));
+    }
+
+    /// The constraint of manifold `m` (manifold `mi` of the step); what it found is
+    /// added to `found` (not `fixed`); its rolling motion, if it has one, pushed onto
+    /// `arms`. One scalar at a time: the reference the lanes' build is tested against.
+    #[inline(always)]
+    pub(super) fn build(
+        &self,
+        mi: usize,
+        m: &Manifold,
+        arms: &mut Vec<RollingArms>,
+        found: &mut Prepared,
+    ) -> ContactConstraint {
+        let (mut c, centres) = self.header(mi, m, arms, found);
+        let sides = [self.bodies.at(c.a), self.bodies.at(c.b)];
+        prepare_points(&mut c, m, sides, centres);
+        c
+    }
+
+    /// [`build`](Self::build) without the points, their couplings and the friction
+    /// anchor (see [`prepare_points`]), and the centres of mass of the constraint's two
+    /// bodies (a static collider's position).
+    #[inline(always)]
+    pub(super) fn header(
+        &self,
+        mi: usize,
+        m: &Manifold,
+        arms: &mut Vec<RollingArms>,
+        found: &mut Prepared,
+    ) -> (ContactConstraint, [Vec3; 2]) {
+        let stiffness = &self.stiffness;
+        let (ca, cb) = (&self.colliders[m.a as usize], &self.colliders[m.b as usize]);
+        let (sa, sb) = (self.bodies.at(ca.body), self.bodies.at(cb.body));
+        let sides = self.sides((ca, cb), (sa, sb));
         let (t1, t2) = m.normal.any_orthonormal_pair();
-        let spin = [spins(&sa), spins(&sb)];
+        let spin = sides.spin;
         // The heaviest body touching either side (or about to) presses through it from
         // the substep it lands; its impulses would show the load only a step late.
         let by = [ca.body, cb.body].map(|i| {
             if i == STATIC {
                 0.0
             } else {
-                heaviest[i as usize]
+                self.heaviest[i as usize]
             }
         });
         let weight = by[0].max(by[1]) * stiffness.gravity * stiffness.h;
@@ -310,7 +302,7 @@ fn prepare_any(
             .max(weight);
         let size = pair_size(&ca.shape, &cb.shape);
         let (softness, r) =
-            contact_softness(&stiffness, sa.inv_mass, sb.inv_mass, load, weight, size);
+            contact_softness(stiffness, sa.inv_mass, sb.inv_mass, load, weight, size);
         // The passes the contact asks for. An impact's impulse between bodies of like
         // mass is no load: a pair closing or parting fast counts only its mass ratio
         // and the heaviest body pressing on it, and a resting pair the smaller of its
@@ -321,33 +313,31 @@ fn prepare_any(
         let (lo, hi) = (sa.inv_mass.min(sb.inv_mass), sa.inv_mass.max(sb.inv_mass));
         let mass_ratio = if lo > 0.0 { hi / lo } else { 1.0 };
         let pressing = mass_ratio.max(by[0].max(by[1]) * hi).max(1.0);
-        let resting = m.normal.dot(sb.v - sa.v).abs() <= resting_speed;
+        let resting = m.normal.dot(sb.v - sa.v).abs() <= self.resting_speed;
         let r = if pressing >= SQUEEZE_RATIO {
             r
         } else if resting {
             // A load that stays: the smaller of the last two steps' (an impact's impulse
             // lasts one).
             let steady = load.min(m.previous_load.max(weight));
-            load_ratio(&stiffness, lo, hi, steady)
+            load_ratio(stiffness, lo, hi, steady)
         } else {
             pressing
         };
         found.ratio = found.ratio.max(r);
         let relax = if m.restitution > 0.0 { r } else { mass_ratio };
         found.relax_ratio = found.relax_ratio.max(relax);
-        let arm = [
-            sphere_arm(ca, spin[0], centre(ca)),
-            sphere_arm(cb, spin[1], centre(cb)),
-        ];
-        let axis = [
-            symmetry_axis(ca, spin[0], centre(ca)),
-            symmetry_axis(cb, spin[1], centre(cb)),
-        ];
-        let c = &mut out[mi];
-        *c = ContactConstraint {
+        let count = |body: u32| {
+            if body == STATIC {
+                0
+            } else {
+                self.overlaps[body as usize]
+            }
+        };
+        let c = ContactConstraint {
             a: ca.body,
             b: cb.body,
-            manifold: (first + mi) as u32,
+            manifold: mi as u32,
             normal: m.normal,
             tangent1: t1,
             tangent2: t2,
@@ -356,17 +346,19 @@ fn prepare_any(
                     spin[0] && !matches!(ca.shape, Shape::Sphere { .. }),
                     spin[1] && !matches!(cb.shape, Shape::Sphere { .. }),
                 ],
-                roll: if arm == [Vec3::ZERO; 2] && axis == [Vec3::ZERO; 2] {
-                    NO_ROLL
-                } else {
-                    arms.push(RollingArms { arm, axis });
+                roll: if sides.rolls() {
+                    arms.push(RollingArms {
+                        arm: sides.arm,
+                        axis: sides.axis,
+                    });
                     arms.len() as u32 - 1
+                } else {
+                    NO_ROLL
                 },
             },
             spin,
-            refresh: (spin[0] && (anisotropic(ca.body) || arm[0] != Vec3::ZERO))
-                || (spin[1] && (anisotropic(cb.body) || arm[1] != Vec3::ZERO)),
-            report: ca.filter.events || cb.filter.events,
+            refresh: sides.refresh,
+            report: sides.report,
             friction: if stiffness.friction { m.friction } else { 0.0 },
             restitution: m.restitution,
             approach_gain: stiffness.gravity * stiffness.dt,
@@ -375,49 +367,56 @@ fn prepare_any(
             max_push: if ca.body == STATIC || cb.body == STATIC {
                 stiffness.max_push_out
             } else {
-                shares.get(count(ca.body), count(cb.body))
+                self.shares.get(count(ca.body), count(cb.body))
             },
             points: [ConstraintPoint::default(); MAX_POINTS],
             len: m.len,
             coupling: [0.0; COUPLINGS],
             anchor: FrictionAnchor::default(),
         };
-        if (c.a == STATIC || c.b == STATIC) && found.fixed == mi {
-            found.fixed += 1;
-        }
-        keys[mi] = ContactKey::of_sides(c, [&sa, &sb]);
         found.refresh |= c.refresh;
         found.report |= c.report;
         found.bounce |= c.restitution > 0.0;
-        let linear = sa.inv_mass + sb.inv_mass;
-        let mid = m.points().iter().map(|p| p.point).sum::<Vec3>() / m.len.max(1) as f32;
-        for (cp, p) in c.points.iter_mut().zip(m.points()) {
-            let (ra, rb) = (p.point - centre(ca), p.point - centre(cb));
-            let normal_row = AngularRow::new(&sa, &sb, ra, rb, m.normal);
-            *cp = ConstraintPoint {
-                ra,
-                rb,
-                adjusted_separation: p.separation - m.normal.dot(rb - ra),
-                normal_row,
-                normal_mass: mass_of(linear + normal_row.inv_mass(spin)),
-                normal_impulse: p.normal_impulse,
-                twist_arm: plane_distance(p.point - mid, m.normal),
-                max_normal_impulse: 0.0,
-                relative_velocity: 0.0,
-                separation: 0.0,
-            };
-            cp.relative_velocity = row_velocity(&sa, &sb, m.normal, &normal_row, spin);
-        }
-        c.coupling = normal_couplings(&c.points[..m.len], linear, spin);
-        c.anchor = friction_anchor(&sa, &sb, (mid - centre(ca), mid - centre(cb)), c, m.len);
-        // Last step's friction, from the shares of the points that persist.
-        let tangent = m.points().iter().map(|p| p.tangent_impulse).sum::<Vec3>();
-        c.anchor.tangent_impulse = Vec2::new(tangent.dot(t1), tangent.dot(t2));
-        if m.len > 1 {
-            c.anchor.twist_impulse = m.points().iter().map(|p| p.twist_impulse).sum();
-        }
+        (c, [self.centre(ca), self.centre(cb)])
     }
-    found
+}
+
+/// The points, couplings and friction anchor of constraint `c` (its header built) of
+/// manifold `m` between `sides` with centres `centres`, one scalar at a time
+/// (`ContactLanes` does the same eight at a time).
+fn prepare_points(
+    c: &mut ContactConstraint,
+    m: &Manifold,
+    [sa, sb]: [&SolverBody; 2],
+    [ca, cb]: [Vec3; 2],
+) {
+    let spin = c.spin;
+    let linear = sa.inv_mass + sb.inv_mass;
+    let mid = m.points().iter().map(|p| p.point).sum::<Vec3>() / m.len.max(1) as f32;
+    for (cp, p) in c.points.iter_mut().zip(m.points()) {
+        let (ra, rb) = (p.point - ca, p.point - cb);
+        let normal_row = AngularRow::new(sa, sb, ra, rb, m.normal);
+        *cp = ConstraintPoint {
+            ra,
+            rb,
+            adjusted_separation: p.separation - m.normal.dot(rb - ra),
+            normal_row,
+            normal_mass: mass_of(linear + normal_row.inv_mass(spin)),
+            normal_impulse: p.normal_impulse,
+            twist_arm: plane_distance(p.point - mid, m.normal),
+            max_normal_impulse: 0.0,
+            relative_velocity: row_velocity(sa, sb, m.normal, &normal_row, spin),
+            separation: 0.0,
+        };
+    }
+    c.coupling = normal_couplings(&c.points[..m.len], linear, spin);
+    c.anchor = friction_anchor(sa, sb, (mid - ca, mid - cb), c, m.len);
+    // Last step's friction, from the shares of the points that persist.
+    let tangent = m.points().iter().map(|p| p.tangent_impulse).sum::<Vec3>();
+    c.anchor.tangent_impulse = Vec2::new(tangent.dot(c.tangent1), tangent.dot(c.tangent2));
+    if m.len > 1 {
+        c.anchor.twist_impulse = m.points().iter().map(|p| p.twist_impulse).sum();
+    }
 }
 
 /// Re-derives the inverse-inertia images of the rows and the point masses of constraints
@@ -429,12 +428,20 @@ fn prepare_any(
 /// *was*, which is mostly across the rod now, and the step hands it hundreds of joules
 /// (`tests/regress_turning_rod_inertia.rs`). The anchors stay at the start of the step:
 /// impulses along any fixed row with the true mass matrix cannot add energy.
+///
+/// Only the scalar pass solves such a contact (`scalar`: its contacts), and only theirs
+/// are kept as constraints.
 pub fn refresh_rows(
     bodies: &[SolverBody],
     constraints: &mut [ContactConstraint],
+    scalar: &[u32],
     arms: &[RollingArms],
 ) {
-    for c in constraints.iter_mut().filter(|c| c.refresh) {
+    for &ci in scalar {
+        let c = &mut constraints[ci as usize];
+        if !c.refresh {
+            continue;
+        }
         let (a, b) = (body(bodies, c.a), body(bodies, c.b));
         let linear = a.inv_mass + b.inv_mass;
         let anchoring = c.anchoring;

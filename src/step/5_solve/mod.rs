@@ -4,6 +4,7 @@
 //! step and run the [`SolverStage`]s in order. Everything else keeps stage 2's free motion.
 
 mod contact;
+mod contact_lanes;
 mod continuous;
 mod crew;
 mod iterate;
@@ -12,6 +13,7 @@ mod joint_direct;
 #[cfg(test)]
 mod joint_direct_tests;
 mod joint_forces;
+mod prepare_contacts;
 #[cfg(test)]
 mod prepare_tests;
 mod push_out;
@@ -35,8 +37,7 @@ use crate::world::{
     ContactBatches, ContactParams, PhysicsWorld, STATIC, SolveWork, is_isotropic, world_inv_inertia,
 };
 
-use contact::PARALLEL_PREPARE_FROM;
-pub use contact::{prepare_constraints, refresh_rows};
+pub use contact::refresh_rows;
 pub use continuous::sweep_against_fixed;
 use crew::{Crew, StopOnDrop};
 pub use iterate::{apply_restitution, stop_approach};
@@ -45,6 +46,7 @@ pub(crate) use iterate::{solve_listed, warm_start_listed};
 use joint::{solve_joints, warm_start_joints};
 use joint_direct::JointSystem;
 use joint_forces::store_joint_forces;
+use prepare_contacts::{PARALLEL_PREPARE_FROM, prepare_contacts};
 pub(crate) use steps::{Pass, solve_steps, warm_start_steps};
 pub use stiffness::substeps_for;
 use stiffness::{HELD_MAX_RATE, JOINT_DAMPING_RATIO, MAX_TENSION_TURN, joint_hertz, tension_omega};
@@ -185,7 +187,11 @@ pub fn solve_contacts(
             }
             // A substep's impulses are final once relaxed (the last one's after restitution).
             if scratch.report && k + 1 < n {
-                sum_impulses(&world.constraints, &mut world.manifolds);
+                sum_impulses(
+                    &world.constraints,
+                    &scratch.batches.scalar,
+                    &mut world.manifolds,
+                );
             }
         }
     };
@@ -213,7 +219,11 @@ pub fn solve_contacts(
         run(SolverStage::Restitution, world, scratch, None);
     }
     if scratch.report {
-        sum_impulses(&world.constraints, &mut world.manifolds);
+        sum_impulses(
+            &world.constraints,
+            &scratch.batches.scalar,
+            &mut world.manifolds,
+        );
     }
     run(SolverStage::StoreImpulses, world, scratch, None);
 }
@@ -239,15 +249,18 @@ fn run_stage(
             let (m, c, s) = (&world.manifolds, &world.colliders, &world.bodies);
             let out = (&mut world.constraints, &mut world.contact_keys);
             let arms = &mut world.rolling_arms;
+            let keep = world.keep_constraints;
             let per_body = (&*scratch.per_body.overlaps, &*scratch.per_body.heaviest);
             let threads = bevy::tasks::ComputeTaskPool::try_get().map_or(1, |p| p.thread_num());
             let split = threads >= 2 && m.len() >= PARALLEL_PREPARE_FROM;
-            let found = prepare_constraints(m, c, s, bodies, stiffness, per_body, out, arms, split);
+            let scene = (&**c, &**s, &**bodies);
+            let lists = (&mut scratch.batches, arms);
+            let found = prepare_contacts(m, scene, stiffness, per_body, out, lists, (split, keep));
             scratch.fixed_constraints = found.fixed;
             debug_assert!(
-                world.constraints[scratch.fixed_constraints..]
+                world.contact_keys[scratch.fixed_constraints..]
                     .iter()
-                    .all(|c| c.a != STATIC && c.b != STATIC),
+                    .all(|k| k.a != STATIC && k.b != STATIC),
                 "contacts with fixed colliders must come first"
             );
             for j in world.joints.iter_mut() {
@@ -270,11 +283,6 @@ fn run_stage(
             world.relax_iterations = iterations_for(settings.iterations, found.relax_ratio);
             (scratch.refresh, scratch.report) = (found.refresh, found.report);
             scratch.bounce = found.bounce;
-            let fixed = scratch.fixed_constraints;
-            let (constraints, keys) = (&world.constraints, &world.contact_keys);
-            scratch
-                .batches
-                .build_keyed(constraints, keys, bodies, fixed);
             scratch.measured = false;
             let batches = &scratch.batches;
             let worth = |steps| split::worth_splitting(batches, &steps);
@@ -374,7 +382,8 @@ fn run_stage(
             }
             // The world inertia of an anisotropic body turned with it: the rows follow.
             if scratch.refresh {
-                refresh_rows(bodies, &mut world.constraints, &world.rolling_arms);
+                let scalar = &scratch.batches.scalar;
+                refresh_rows(bodies, &mut world.constraints, scalar, &world.rolling_arms);
             }
         }
         SolverStage::Restitution => {

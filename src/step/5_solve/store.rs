@@ -14,8 +14,7 @@
 use bevy::prelude::*;
 
 use crate::world::{
-    ContactBatches, ContactConstraint, MAX_POINTS, Manifold, NO_CONTACT, PhysicsWorld, SolveStep,
-    prefetch,
+    ContactBatches, ContactConstraint, MAX_POINTS, Manifold, NO_CONTACT, PhysicsWorld, prefetch,
 };
 
 /// How many batches ahead of the one being stored its manifolds are fetched.
@@ -37,10 +36,7 @@ pub(super) fn store_impulses(
         let batched = batches.batches[..written_back]
             .iter()
             .flat_map(|b| b.contact);
-        let scalar = batches.steps.iter().filter_map(|s| match s {
-            SolveStep::Scalar(c) => Some(*c),
-            SolveStep::Batches(_) => None,
-        });
+        let scalar = batches.scalar.iter().copied();
         for ci in batched.chain(scalar).filter(|&c| c != NO_CONTACT) {
             store_constraint(&constraints[ci as usize], manifolds);
         }
@@ -60,8 +56,6 @@ pub(super) fn store_impulses(
                 if ci == NO_CONTACT {
                     continue;
                 }
-                // Constraints are built one a manifold, in manifold order.
-                debug_assert_eq!(constraints[ci as usize].manifold, ci, "constraint order");
                 let m = &mut manifolds[ci as usize];
                 let lane = |x: &crate::math::lanes::F8| x.as_array_ref()[l];
                 let (mut impulses, mut approach) = ([0.0; MAX_POINTS], [0.0; MAX_POINTS]);
@@ -70,27 +64,8 @@ pub(super) fn store_impulses(
                 }
                 let t = [lane(&f.tangent_impulse[0]), lane(&f.tangent_impulse[1])];
                 let tangent = tangents[0].lane(l) * t[0] + tangents[1].lane(l) * t[1];
-                // What the constraint, written back, would have stored (debug builds).
-                #[cfg(debug_assertions)]
-                let expected = {
-                    let mut c = constraints[ci as usize];
-                    c.anchor.tangent_impulse = Vec2::from(t);
-                    c.anchor.twist_impulse = lane(&f.twist_impulse);
-                    for (p, lanes) in c.points[..c.len].iter_mut().zip(points) {
-                        lanes.write_back(l, p);
-                    }
-                    let mut expected = *m;
-                    store_into(&c, &mut expected);
-                    expected
-                };
                 let shares = shares_of(&impulses[..m.len], tangent, lane(&f.twist_impulse));
                 store_manifold(m, &impulses, &approach, shares);
-                #[cfg(debug_assertions)]
-                debug_assert!(
-                    format!("{:?}", (m.previous_load, m.points()))
-                        == format!("{:?}", (expected.previous_load, expected.points())),
-                    "a contact's lanes stored as its constraint would have been"
-                );
             }
         }
     }
@@ -146,8 +121,12 @@ fn store_manifold(
 /// totals for the step, for constraints that report them. Run after every substep but
 /// the last, and once after restitution for the last (whose impulse restitution and the
 /// final stop add to).
-pub fn sum_impulses(constraints: &[ContactConstraint], manifolds: &mut [Manifold]) {
-    for c in constraints.iter().filter(|c| c.report) {
+///
+/// Only the scalar pass solves a contact that reports (`scalar`: its contacts), and only
+/// theirs are kept as constraints.
+pub fn sum_impulses(constraints: &[ContactConstraint], scalar: &[u32], manifolds: &mut [Manifold]) {
+    let listed = scalar.iter().map(|&c| &constraints[c as usize]);
+    for c in listed.filter(|c| c.report) {
         let m = &mut manifolds[c.manifold as usize];
         let shares = friction_shares(c);
         for ((mp, p), share) in m.points_mut().iter_mut().zip(&c.points).zip(shares) {

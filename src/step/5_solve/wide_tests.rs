@@ -11,9 +11,9 @@ use super::{Pass, solve_steps, warm_start_steps};
 use crate::math::Softness;
 use crate::rng::Rnd;
 use crate::world::{
-    Anchoring, AngularRow, ConstraintPoint, ContactBatches, ContactConstraint, FrictionAnchor,
-    LANES, NO_CONTACT, NO_ROLL, STATIC, SolverBody, body, coupling_index, normal_couplings,
-    row_velocity, world_inv_inertia,
+    Anchoring, AngularRow, ConstraintPoint, ContactBatches, ContactConstraint, ContactKey,
+    FrictionAnchor, LANES, NO_CONTACT, NO_ROLL, STATIC, SolverBody, body, coupling_index,
+    normal_couplings, row_velocity, world_inv_inertia,
 };
 
 pub(super) fn random_body(r: &mut Rnd) -> SolverBody {
@@ -165,7 +165,11 @@ fn batched_passes_match_scalar() {
         let mut constraints = scalar_constraints.clone();
         let mut batches = ContactBatches::default();
         batches.build(&constraints, &bodies, fixed);
-        assert!(batches.is_valid(&constraints, &bodies));
+        let keys: Vec<_> = constraints
+            .iter()
+            .map(|c| ContactKey::of(c, &bodies))
+            .collect();
+        assert!(batches.is_valid(&keys, &bodies));
         let lanes = batches.batches.iter().flat_map(|b| b.contact);
         lanes_used.0 += lanes.filter(|&c| c != NO_CONTACT).count();
         lanes_used.1 += LANES * batches.batches.len();
