@@ -15,8 +15,8 @@ use bevy::prelude::*;
 
 use crate::math::lanes::{F8, Lane, V3, gt, select};
 use crate::world::{
-    AnchorLanes, AngularRow, COUPLINGS, ConstraintPoint, ContactBatch, ContactConstraint,
-    FrictionAnchor, FrictionLanes, MAX_POINTS, Manifold, PointLanes, SolverBody, coupling_index,
+    AnchorLanes, AngularRow, ConstraintPoint, ContactBatch, ContactConstraint, FrictionAnchor,
+    FrictionLanes, MAX_POINTS, Manifold, PointLanes, SolverBody, coupling_index,
 };
 
 /// One side of eight contacts: what the arithmetic reads of its body.
@@ -118,33 +118,30 @@ impl ManifoldLanes {
     }
 }
 
-/// One point of eight contacts, as computed (zero in lanes without the point).
+/// What a contact's constraint holds beyond its batch's lanes (the rows' images under
+/// the inverse inertias, the friction anchor), lane by lane: read back only for the
+/// contacts kept as constraints.
 #[derive(Clone, Copy, Default)]
-struct PointOut {
-    ra: V3,
-    rb: V3,
-    adjusted_separation: F8,
-    row: [V3; 4],
-    normal_mass: F8,
-    normal_impulse: F8,
-    twist_arm: F8,
-    relative_velocity: F8,
+pub(super) struct ConstraintExtras {
+    /// Ia⁻¹ (ra × n), Ib⁻¹ (rb × n) of each point's normal row.
+    normal_images: [[V3; 2]; MAX_POINTS],
+    /// The friction anchor from each body's centre, m.
+    anchor: [V3; 2],
+    /// The tangent rows' images, per tangent.
+    tangent_images: [[V3; 2]; 2],
+    /// Ia⁻¹ n, Ib⁻¹ n.
+    twist_images: [V3; 2],
 }
 
-/// Eight contacts' points, couplings and friction anchors, lane by lane (zero in empty
-/// lanes).
-#[derive(Clone, Copy, Default)]
-pub(super) struct ContactLanes {
-    point: [PointOut; MAX_POINTS],
-    coupling: [F8; COUPLINGS],
-    anchor: [V3; 2],
-    tangent_rows: [[V3; 4]; 2],
-    tangent_mass: F8,
-    tangent_impulse: [F8; 2],
-    twist_image: [V3; 2],
-    twist_mass: F8,
-    twist_impulse: F8,
-    has: [F8; MAX_POINTS],
+/// Where a batch's lanes go: the batch (its header lanes set), its points and anchors
+/// (as many as its longest contact has), its friction impulses, and the rest of its
+/// constraints (`extras`, filled only when some lane's constraint is kept).
+pub(super) struct BatchOut<'a> {
+    pub batch: &'a mut ContactBatch,
+    pub point: &'a mut [PointLanes],
+    pub anchor: &'a mut [AnchorLanes],
+    pub rubbing: &'a mut FrictionLanes,
+    pub extras: Option<&'a mut ConstraintExtras>,
 }
 
 /// `m * v` for a matrix of columns `m`, in glam's order ((x·vx + y·vy) + z·vz).
@@ -191,179 +188,171 @@ fn keep3<L: Lane>(m: L, v: V3<L>) -> V3 {
     V3::select(m, v, V3::zero()).put()
 }
 
-impl ContactLanes {
-    /// The arithmetic of `prepare_points` on eight manifolds. (No closures here: they
-    /// would not inherit the AVX copy's features, and its intrinsics would be called,
-    /// not inlined.)
-    /// Every field of `out` is written (it is kept between batches: returned, the
-    /// 4 kB went through memcpy).
-    #[inline(always)]
-    pub(super) fn compute<L: Lane>(m: &ManifoldLanes, out: &mut Self) {
-        let zero = L::splat(0.0);
-        let [a, b] = &m.side;
-        let n = m.normal.get::<L>();
-        let (ca, cb) = (a.centre.get::<L>(), b.centre.get::<L>());
-        let spin = [L::load(a.spin), L::load(b.spin)];
-        let linear = L::load(a.inv_mass) + L::load(b.inv_mass);
-        let dv = b.v.get::<L>().sub(a.v.get::<L>());
-        let (wa, wb) = (a.w.get::<L>(), b.w.get::<L>());
-        // The points' centre: glam's sum from zero, absent points adding -0.
-        let mut sum = V3::<L>::zero();
-        for p in &m.point {
-            sum = sum.add(p.get::<L>());
-        }
-        let count = L::load(m.count);
-        let mid = V3 {
-            x: sum.x / count,
-            y: sum.y / count,
-            z: sum.z / count,
-        };
-        out.has = m.has;
-        let mut rows = [[V3::<L>::zero(); 4]; MAX_POINTS];
-        for (k, o) in out.point.iter_mut().enumerate() {
-            let has = L::load(m.has[k]);
-            let p = m.point[k].get::<L>();
-            let (ra, rb) = (p.sub(ca), p.sub(cb));
-            let row = angular_row(&m.side, ra, rb, n);
-            let d = p.sub(mid);
-            let plane = d.sub(n.scale(n.dot(d)));
-            let mut v = n.dot(dv);
-            v = select(spin[0], v - wa.dot(row[0]), v);
-            v = select(spin[1], v + wb.dot(row[1]), v);
-            let adjusted = L::load(m.separation[k]) - n.dot(rb.sub(ra));
-            *o = PointOut {
-                ra: keep3(has, ra),
-                rb: keep3(has, rb),
-                adjusted_separation: keep(has, adjusted),
-                row: [
-                    keep3(has, row[0]),
-                    keep3(has, row[1]),
-                    keep3(has, row[2]),
-                    keep3(has, row[3]),
-                ],
-                normal_mass: keep(has, mass_of(linear + row_inv_mass(&row, spin))),
-                normal_impulse: keep(has, L::load(m.normal_impulse[k])),
-                twist_arm: keep(has, plane.dot(plane).sqrt()),
-                relative_velocity: keep(has, v),
-            };
-            rows[k] = row;
-        }
-        for j in 1..MAX_POINTS {
-            let has = L::load(m.has[j]);
-            for k in 0..j {
-                let ta = select(spin[0], rows[j][0].dot(rows[k][2]), zero);
-                let tb = select(spin[1], rows[j][1].dot(rows[k][3]), zero);
-                out.coupling[coupling_index(j, k)] = keep(has, linear + (ta + tb));
-            }
-        }
-        // The friction anchor (`friction_anchor`), at the points' centre.
-        let any = L::load(m.has[0]);
-        let (fa, fb) = (mid.sub(ca), mid.sub(cb));
-        out.anchor = [keep3(any, fa), keep3(any, fb)];
-        // Last step's friction from the points' shares: glam's Vec3 sum from zero, std's
-        // f32 sum from -0.
-        let mut shares = V3::<L>::zero();
-        let mut turn = L::splat(-0.0);
-        for k in 0..MAX_POINTS {
-            shares = shares.add(m.tangent_impulse[k].get::<L>());
-            turn = turn + L::load(m.twist_impulse[k]);
-        }
-        let mut tangent_k = [zero; 2];
-        for (k, t) in m.tangent.iter().enumerate() {
-            let t = t.get::<L>();
-            let row = angular_row(&m.side, fa, fb, t);
-            tangent_k[k] = linear + row_inv_mass(&row, spin);
-            for (o, r) in out.tangent_rows[k].iter_mut().zip(row) {
-                *o = keep3(any, r);
-            }
-            out.tangent_impulse[k] = keep(any, shares.dot(t));
-        }
-        out.tangent_mass = keep(any, mass_of(L::splat(0.5) * (tangent_k[0] + tangent_k[1])));
-        let (ia, ib) = (mat_mul(&a.inv_inertia, n), mat_mul(&b.inv_inertia, n));
-        out.twist_image = [keep3(any, ia), keep3(any, ib)];
-        let twist = select(spin[0], n.dot(ia), zero) + select(spin[1], n.dot(ib), zero);
-        let many = L::load(m.many);
-        out.twist_mass = keep(many, mass_of(twist));
-        out.twist_impulse = keep(many, turn);
+/// The arithmetic of `prepare_points` on a batch's eight manifolds `m`, into `out`.
+/// (No closures here: they would not inherit the AVX copy's features, and its
+/// intrinsics would be called, not inlined.)
+#[inline(always)]
+pub(super) fn compute<L: Lane>(m: &ManifoldLanes, out: BatchOut) {
+    let BatchOut {
+        batch,
+        point,
+        anchor,
+        rubbing,
+        mut extras,
+    } = out;
+    debug_assert_eq!(point.len(), batch.points as usize, "the batch's points");
+    debug_assert_eq!(anchor.len(), point.len(), "an anchor a point");
+    let zero = L::splat(0.0);
+    let [a, b] = &m.side;
+    let n = m.normal.get::<L>();
+    let (ca, cb) = (a.centre.get::<L>(), b.centre.get::<L>());
+    let spin = [L::load(a.spin), L::load(b.spin)];
+    let linear = L::load(a.inv_mass) + L::load(b.inv_mass);
+    let dv = b.v.get::<L>().sub(a.v.get::<L>());
+    let (wa, wb) = (a.w.get::<L>(), b.w.get::<L>());
+    // The points' centre: glam's sum from zero, absent points adding -0.
+    let mut sum = V3::<L>::zero();
+    for p in &m.point {
+        sum = sum.add(p.get::<L>());
     }
+    let count = L::load(m.count);
+    let mid = V3 {
+        x: sum.x / count,
+        y: sum.y / count,
+        z: sum.z / count,
+    };
+    batch.has = m.has;
+    let mut rows = [[V3::<L>::zero(); 4]; MAX_POINTS];
+    for (k, (o, an)) in point.iter_mut().zip(anchor.iter_mut()).enumerate() {
+        let has = L::load(m.has[k]);
+        let p = m.point[k].get::<L>();
+        let (ra, rb) = (p.sub(ca), p.sub(cb));
+        let row = angular_row(&m.side, ra, rb, n);
+        let d = p.sub(mid);
+        let plane = d.sub(n.scale(n.dot(d)));
+        let mut v = n.dot(dv);
+        v = select(spin[0], v - wa.dot(row[0]), v);
+        v = select(spin[1], v + wb.dot(row[1]), v);
+        let adjusted = L::load(m.separation[k]) - n.dot(rb.sub(ra));
+        *o = PointLanes {
+            normal_ra: keep3(has, row[0]),
+            normal_rb: keep3(has, row[1]),
+            normal_mass: keep(has, mass_of(linear + row_inv_mass(&row, spin))),
+            normal_impulse: keep(has, L::load(m.normal_impulse[k])),
+            twist_arm: keep(has, plane.dot(plane).sqrt()),
+            max_normal_impulse: F8::ZERO,
+            relative_velocity: keep(has, v),
+            separation: F8::ZERO,
+        };
+        *an = AnchorLanes {
+            ra: keep3(has, ra),
+            rb: keep3(has, rb),
+            adjusted_separation: keep(has, adjusted),
+        };
+        if let Some(x) = extras.as_deref_mut() {
+            x.normal_images[k] = [keep3(has, row[2]), keep3(has, row[3])];
+        }
+        rows[k] = row;
+    }
+    for j in 1..MAX_POINTS {
+        let has = L::load(m.has[j]);
+        for k in 0..j {
+            let ta = select(spin[0], rows[j][0].dot(rows[k][2]), zero);
+            let tb = select(spin[1], rows[j][1].dot(rows[k][3]), zero);
+            batch.coupling[coupling_index(j, k)] = keep(has, linear + (ta + tb));
+        }
+    }
+    // The friction anchor (`friction_anchor`), at the points' centre.
+    let any = L::load(m.has[0]);
+    let (fa, fb) = (mid.sub(ca), mid.sub(cb));
+    // Last step's friction from the points' shares: glam's Vec3 sum from zero, std's f32
+    // sum from -0.
+    let mut shares = V3::<L>::zero();
+    let mut turn = L::splat(-0.0);
+    for k in 0..MAX_POINTS {
+        shares = shares.add(m.tangent_impulse[k].get::<L>());
+        turn = turn + L::load(m.twist_impulse[k]);
+    }
+    let mut tangent_k = [zero; 2];
+    let mut images = [[V3::<L>::zero(); 2]; 2];
+    for (k, t) in m.tangent.iter().enumerate() {
+        let t = t.get::<L>();
+        let row = angular_row(&m.side, fa, fb, t);
+        tangent_k[k] = linear + row_inv_mass(&row, spin);
+        batch.tangent_ra[k] = keep3(any, row[0]);
+        batch.tangent_rb[k] = keep3(any, row[1]);
+        images[k] = [row[2], row[3]];
+        rubbing.tangent_impulse[k] = keep(any, shares.dot(t));
+    }
+    batch.tangent_mass = keep(any, mass_of(L::splat(0.5) * (tangent_k[0] + tangent_k[1])));
+    let (ia, ib) = (mat_mul(&a.inv_inertia, n), mat_mul(&b.inv_inertia, n));
+    let twist = select(spin[0], n.dot(ia), zero) + select(spin[1], n.dot(ib), zero);
+    let many = L::load(m.many);
+    batch.twist_mass = keep(many, mass_of(twist));
+    rubbing.twist_impulse = keep(many, turn);
+    if let Some(x) = extras {
+        x.anchor = [keep3(any, fa), keep3(any, fb)];
+        for (o, [i, j]) in x.tangent_images.iter_mut().zip(images) {
+            *o = [keep3(any, i), keep3(any, j)];
+        }
+        x.twist_images = [keep3(any, ia), keep3(any, ib)];
+    }
+}
 
-    /// The lanes into `batch` (whose header lanes are set): its points `point` and
-    /// `anchor`, its friction impulses `rubbing`.
+impl ConstraintExtras {
+    /// Lane `l` of a batch (see [`BatchOut`]) into the constraint `c` of manifold `m`
+    /// (its header already built).
     #[inline(always)]
-    pub(super) fn write_batch(
+    pub(super) fn write(
         &self,
-        batch: &mut ContactBatch,
-        (point, anchor): (&mut [PointLanes], &mut [AnchorLanes]),
-        rubbing: &mut FrictionLanes,
+        l: usize,
+        (batch, point, anchor, rubbing): (
+            &ContactBatch,
+            &[PointLanes],
+            &[AnchorLanes],
+            &FrictionLanes,
+        ),
+        m: &Manifold,
+        c: &mut ContactConstraint,
     ) {
-        debug_assert_eq!(point.len(), batch.points as usize, "the batch's points");
-        for ((p, a), o) in point.iter_mut().zip(anchor.iter_mut()).zip(&self.point) {
-            *p = PointLanes {
-                normal_ra: o.row[0],
-                normal_rb: o.row[1],
-                normal_mass: o.normal_mass,
-                normal_impulse: o.normal_impulse,
-                twist_arm: o.twist_arm,
-                max_normal_impulse: F8::ZERO,
-                relative_velocity: o.relative_velocity,
-                separation: F8::ZERO,
-            };
-            *a = AnchorLanes {
-                ra: o.ra,
-                rb: o.rb,
-                adjusted_separation: o.adjusted_separation,
-            };
-        }
-        batch.has = self.has;
-        batch.coupling = self.coupling;
-        for k in 0..2 {
-            batch.tangent_ra[k] = self.tangent_rows[k][0];
-            batch.tangent_rb[k] = self.tangent_rows[k][1];
-        }
-        batch.tangent_mass = self.tangent_mass;
-        batch.twist_mass = self.twist_mass;
-        *rubbing = FrictionLanes {
-            tangent_impulse: self.tangent_impulse,
-            twist_impulse: self.twist_impulse,
-        };
-    }
-
-    /// Lane `l` into the constraint `c` of manifold `m` (its header already built).
-    #[inline(always)]
-    pub(super) fn write(&self, l: usize, m: &Manifold, c: &mut ContactConstraint) {
         let f = |v: &F8| v.as_array_ref()[l];
-        let row = |r: &[V3; 4]| AngularRow {
-            ra: r[0].lane(l),
-            rb: r[1].lane(l),
-            ia: r[2].lane(l),
-            ib: r[3].lane(l),
+        let row = |ra: &V3, rb: &V3, [ia, ib]: &[V3; 2]| AngularRow {
+            ra: ra.lane(l),
+            rb: rb.lane(l),
+            ia: ia.lane(l),
+            ib: ib.lane(l),
         };
-        for (k, (cp, p)) in c.points.iter_mut().zip(m.points()).enumerate() {
-            let o = &self.point[k];
+        for (k, cp) in c.points[..m.len].iter_mut().enumerate() {
+            let (o, an) = (&point[k], &anchor[k]);
             *cp = ConstraintPoint {
-                ra: o.ra.lane(l),
-                rb: o.rb.lane(l),
-                adjusted_separation: f(&o.adjusted_separation),
-                normal_row: row(&o.row),
+                ra: an.ra.lane(l),
+                rb: an.rb.lane(l),
+                adjusted_separation: f(&an.adjusted_separation),
+                normal_row: row(&o.normal_ra, &o.normal_rb, &self.normal_images[k]),
                 normal_mass: f(&o.normal_mass),
-                normal_impulse: p.normal_impulse,
+                normal_impulse: f(&o.normal_impulse),
                 twist_arm: f(&o.twist_arm),
                 max_normal_impulse: 0.0,
                 relative_velocity: f(&o.relative_velocity),
                 separation: 0.0,
             };
         }
-        c.coupling = self.coupling.map(|k| f(&k));
+        c.coupling = batch.coupling.map(|k| f(&k));
+        let t = &rubbing.tangent_impulse;
+        let [t0, t1] = &self.tangent_images;
         c.anchor = FrictionAnchor {
             ra: self.anchor[0].lane(l),
             rb: self.anchor[1].lane(l),
-            tangent_rows: self.tangent_rows.each_ref().map(row),
-            tangent_mass: f(&self.tangent_mass),
-            tangent_impulse: Vec2::new(f(&self.tangent_impulse[0]), f(&self.tangent_impulse[1])),
-            twist_ia: self.twist_image[0].lane(l),
-            twist_ib: self.twist_image[1].lane(l),
-            twist_mass: f(&self.twist_mass),
-            twist_impulse: f(&self.twist_impulse),
+            tangent_rows: [
+                row(&batch.tangent_ra[0], &batch.tangent_rb[0], t0),
+                row(&batch.tangent_ra[1], &batch.tangent_rb[1], t1),
+            ],
+            tangent_mass: f(&batch.tangent_mass),
+            tangent_impulse: Vec2::new(f(&t[0]), f(&t[1])),
+            twist_ia: self.twist_images[0].lane(l),
+            twist_ib: self.twist_images[1].lane(l),
+            twist_mass: f(&batch.twist_mass),
+            twist_impulse: f(&rubbing.twist_impulse),
         };
     }
 }

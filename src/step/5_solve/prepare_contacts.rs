@@ -10,7 +10,7 @@
 //! 1.7 MB written and read again a step.
 
 use super::contact::{Builder, Prepared};
-use super::contact_lanes::{ContactLanes, ManifoldLanes};
+use super::contact_lanes::{BatchOut, ConstraintExtras, ManifoldLanes, compute};
 #[cfg(target_arch = "x86_64")]
 use crate::math::lanes::avx::Y8;
 use crate::math::lanes::{F8, Lane, three_operand_copy};
@@ -206,7 +206,7 @@ fn build_part_any<L: Lane>(
     };
     let base = part.batches.first().map_or(0, |b| b.first as usize);
     let mut lanes = ManifoldLanes::default();
-    let mut built = ContactLanes::default();
+    let mut extras = ConstraintExtras::default();
     for j in 0..part.batches.len() {
         fetch_ahead(builder, manifolds, part.batches, j);
         let batch = &mut part.batches[j];
@@ -214,6 +214,7 @@ fn build_part_any<L: Lane>(
         let range = range.start - base..range.end - base;
         let (point, anchor) = (&mut part.points[range.clone()], &mut part.anchors[range]);
         // The lanes' headers one by one, then their points at once.
+        let mut kept = false;
         for (l, ci) in batch.contact.into_iter().enumerate() {
             if ci == NO_CONTACT {
                 lanes.clear(l);
@@ -229,16 +230,27 @@ fn build_part_any<L: Lane>(
             lanes.set(l, m, &c, sides, centres);
             if ci < keep_below {
                 keep(ci, c);
+                kept = true;
             }
         }
-        ContactLanes::compute::<L>(&lanes, &mut built);
-        built.write_batch(batch, (point, anchor), &mut part.friction[j]);
-        for (l, ci) in batch.contact.into_iter().enumerate() {
-            let ci = ci as usize;
-            if ci < keep_below {
-                // SAFETY: as `keep`'s.
-                let c = unsafe { &mut constraints.slice(ci..ci + 1)[0] };
-                built.write(l, &manifolds[ci], c);
+        let rubbing = &mut part.friction[j];
+        let out = BatchOut {
+            batch,
+            point,
+            anchor,
+            rubbing,
+            extras: kept.then_some(&mut extras),
+        };
+        compute::<L>(&lanes, out);
+        if kept {
+            let lanes = (&*batch, &*point, &*anchor, &*rubbing);
+            for (l, ci) in batch.contact.into_iter().enumerate() {
+                let ci = ci as usize;
+                if ci < keep_below {
+                    // SAFETY: as `keep`'s.
+                    let c = unsafe { &mut constraints.slice(ci..ci + 1)[0] };
+                    extras.write(l, lanes, &manifolds[ci], c);
+                }
             }
         }
     }
