@@ -4,9 +4,11 @@
 
 use bevy::prelude::*;
 
+use super::contact_load::{Load, LoadLanes};
 use super::push_out::PushOutShares;
-use super::stiffness::{contact_softness, load_ratio, pair_size};
+use super::stiffness::pair_size;
 use crate::collider::Shape;
+use crate::math::Softness;
 use crate::world::{
     Anchoring, AngularRow, BodyState, BodyView, COUPLINGS, ColliderEntry, ConstraintPoint,
     ContactConstraint, ContactKey, ContactParams, FrictionAnchor, MAX_POINTS, Manifold, NO_ROLL,
@@ -142,7 +144,7 @@ pub(super) struct Builder<'a> {
     colliders: &'a [ColliderEntry],
     states: &'a [BodyState],
     pub(super) bodies: &'a [SolverBody],
-    stiffness: ContactParams,
+    pub(super) stiffness: ContactParams,
     overlaps: &'a [u32],
     heaviest: &'a [f32],
     shares: PushOutShares,
@@ -261,7 +263,7 @@ impl<'a> Builder<'a> {
         arms: &mut Vec<RollingArms>,
         found: &mut Prepared,
     ) -> ContactConstraint {
-        let (mut c, centres) = self.header(mi, m, arms, found);
+        let (mut c, centres) = self.header(mi, m, arms, found, None);
         let sides = [self.bodies.at(c.a), self.bodies.at(c.b)];
         prepare_points(&mut c, m, sides, centres);
         c
@@ -269,7 +271,9 @@ impl<'a> Builder<'a> {
 
     /// [`build`](Self::build) without the points, their couplings and the friction
     /// anchor (see [`prepare_points`]), and the centres of mass of the constraint's two
-    /// bodies (a static collider's position).
+    /// bodies (a static collider's position). With `lanes` (a batch's loads and this
+    /// contact's lane), the softness is left to the lanes ([`LoadLanes::soften`]) and
+    /// so are the ratios `found` would take.
     #[inline(always)]
     pub(super) fn header(
         &self,
@@ -277,6 +281,7 @@ impl<'a> Builder<'a> {
         m: &Manifold,
         arms: &mut Vec<RollingArms>,
         found: &mut Prepared,
+        lanes: Option<(&mut LoadLanes, usize)>,
     ) -> (ContactConstraint, [Vec3; 2]) {
         let stiffness = &self.stiffness;
         let (ca, cb) = (&self.colliders[m.a as usize], &self.colliders[m.b as usize]);
@@ -293,40 +298,36 @@ impl<'a> Builder<'a> {
                 self.heaviest[i as usize]
             }
         });
-        let weight = by[0].max(by[1]) * stiffness.gravity * stiffness.h;
-        let load = m
-            .points()
-            .iter()
-            .map(|p| p.normal_impulse)
-            .sum::<f32>()
-            .max(weight);
-        let size = pair_size(&ca.shape, &cb.shape);
-        let (softness, r) =
-            contact_softness(stiffness, sa.inv_mass, sb.inv_mass, load, weight, size);
-        // The passes the contact asks for. An impact's impulse between bodies of like
-        // mass is no load: a pair closing or parting fast counts only its mass ratio
-        // and the heaviest body pressing on it, and a resting pair the smaller of its
-        // last two steps' loads (a body struck from above passes the blow on to the
-        // floor for one step). Unless that ratio is a squeeze's (`SQUEEZE_RATIO`): a
-        // heavy body landing on a light one squeezes it, and the squeeze needs the
-        // passes its impulse asks for (tests/regress_squeezed_box_restitution.rs).
-        let (lo, hi) = (sa.inv_mass.min(sb.inv_mass), sa.inv_mass.max(sb.inv_mass));
-        let mass_ratio = if lo > 0.0 { hi / lo } else { 1.0 };
-        let pressing = mass_ratio.max(by[0].max(by[1]) * hi).max(1.0);
-        let resting = m.normal.dot(sb.v - sa.v).abs() <= self.resting_speed;
-        let r = if pressing >= SQUEEZE_RATIO {
-            r
-        } else if resting {
-            // A load that stays: the smaller of the last two steps' (an impact's impulse
-            // lasts one).
-            let steady = load.min(m.previous_load.max(weight));
-            load_ratio(stiffness, lo, hi, steady)
-        } else {
-            pressing
+        let heaviest = by[0].max(by[1]);
+        let weight = heaviest * stiffness.gravity * stiffness.h;
+        let load = Load {
+            inv_mass: [sa.inv_mass, sb.inv_mass],
+            load: m
+                .points()
+                .iter()
+                .map(|p| p.normal_impulse)
+                .sum::<f32>()
+                .max(weight),
+            heaviest,
+            weight,
+            size: pair_size(&ca.shape, &cb.shape),
+            resting: m.normal.dot(sb.v - sa.v).abs() <= self.resting_speed,
+            previous_load: m.previous_load,
+            restitution: m.restitution,
         };
-        found.ratio = found.ratio.max(r);
-        let relax = if m.restitution > 0.0 { r } else { mass_ratio };
-        found.relax_ratio = found.relax_ratio.max(relax);
+        let softness = match lanes {
+            Some((lanes, l)) => {
+                // Softened in lanes, with the batch's other contacts.
+                lanes.set(l, &load);
+                Softness::default()
+            }
+            None => {
+                let soft = load.soften(stiffness);
+                found.ratio = found.ratio.max(soft.ratio);
+                found.relax_ratio = found.relax_ratio.max(soft.relax);
+                soft.softness
+            }
+        };
         let count = |body: u32| {
             if body == STATIC {
                 0

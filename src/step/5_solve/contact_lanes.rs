@@ -13,6 +13,7 @@
 
 use bevy::prelude::*;
 
+use crate::math::Softness;
 use crate::math::lanes::{F8, Lane, V3, gt, select};
 use crate::world::{
     AnchorLanes, AngularRow, ConstraintPoint, ContactBatch, ContactConstraint, FrictionAnchor,
@@ -106,6 +107,12 @@ impl ManifoldLanes {
         }
         self.count.as_array_mut()[l] = m.len.max(1) as f32;
         self.many.as_array_mut()[l] = if m.len > 1 { ALL } else { 0.0 };
+    }
+
+    /// All-ones lanes that hold a contact.
+    #[inline(always)]
+    pub(super) fn any(&self) -> F8 {
+        self.has[0]
     }
 
     /// Lane `l` empty: no points (what it computes is zero).
@@ -337,6 +344,11 @@ impl ConstraintExtras {
                 separation: 0.0,
             };
         }
+        c.softness = Softness {
+            bias_rate: f(&batch.bias_rate),
+            mass_scale: f(&batch.mass_scale),
+            impulse_scale: f(&batch.impulse_scale),
+        };
         c.coupling = batch.coupling.map(|k| f(&k));
         let t = &rubbing.tangent_impulse;
         let [t0, t1] = &self.tangent_images;

@@ -5,6 +5,7 @@
 
 mod contact;
 mod contact_lanes;
+mod contact_load;
 mod continuous;
 mod crew;
 mod iterate;

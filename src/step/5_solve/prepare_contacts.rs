@@ -11,6 +11,7 @@
 
 use super::contact::{Builder, Prepared};
 use super::contact_lanes::{BatchOut, ConstraintExtras, ManifoldLanes, compute};
+use super::contact_load::LoadLanes;
 #[cfg(target_arch = "x86_64")]
 use crate::math::lanes::avx::Y8;
 use crate::math::lanes::{F8, Lane, three_operand_copy};
@@ -207,6 +208,7 @@ fn build_part_any<L: Lane>(
     let base = part.batches.first().map_or(0, |b| b.first as usize);
     let mut lanes = ManifoldLanes::default();
     let mut extras = ConstraintExtras::default();
+    let mut loads = LoadLanes::default();
     for j in 0..part.batches.len() {
         fetch_ahead(builder, manifolds, part.batches, j);
         let batch = &mut part.batches[j];
@@ -222,7 +224,7 @@ fn build_part_any<L: Lane>(
             }
             let ci = ci as usize;
             let m = &manifolds[ci];
-            let (c, centres) = builder.header(ci, m, arms, &mut found);
+            let (c, centres) = builder.header(ci, m, arms, &mut found, Some((&mut loads, l)));
             debug_assert_eq!(ContactKey::of(&c, builder.bodies), builder.key(m));
             debug_assert!(!c.anchoring.rolls(), "a rolling contact is never batched");
             batch.set_header(l, &c, builder.bodies);
@@ -231,6 +233,18 @@ fn build_part_any<L: Lane>(
             if ci < keep_below {
                 keep(ci, c);
                 kept = true;
+            }
+        }
+        let soft = loads.soften::<L>(&builder.stiffness);
+        let any = lanes.any();
+        batch.bias_rate = soft.bias_rate & any;
+        batch.mass_scale = soft.mass_scale & any;
+        batch.impulse_scale = soft.impulse_scale & any;
+        for (l, ci) in batch.contact.into_iter().enumerate() {
+            if ci != NO_CONTACT {
+                let lane = |v: &F8| v.as_array_ref()[l];
+                found.ratio = found.ratio.max(lane(&soft.ratio));
+                found.relax_ratio = found.relax_ratio.max(lane(&soft.relax));
             }
         }
         let rubbing = &mut part.friction[j];

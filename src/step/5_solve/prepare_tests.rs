@@ -98,7 +98,11 @@ fn compare(world: &PhysicsWorld, per_body: &PerBody, n: usize, what: &str) -> (u
     // The lanes' arithmetic against the scalar reference, contact by contact.
     let counts = (&*per_body.overlaps, &*per_body.heaviest);
     let builder = Builder::new(&world.colliders, &world.bodies, b, params(), counts);
-    let mut found = f1;
+    let mut found = Prepared {
+        ratio: 1.0,
+        relax_ratio: 1.0,
+        ..f1
+    };
     let mut arms = Vec::new();
     for (i, c) in one.constraints.iter().enumerate() {
         let reference = builder.build(i, &world.manifolds[i], &mut arms, &mut found);
@@ -107,6 +111,7 @@ fn compare(world: &PhysicsWorld, per_body: &PerBody, n: usize, what: &str) -> (u
             assert_eq!(c, r, "{what}: constraint {i} against the scalar reference");
         }
     }
+    assert_eq!(found, f1, "{what}: findings against the scalar reference");
     let lanes = one.batches.batches.iter().flat_map(|b| b.contact);
     let batched = lanes.filter(|&c| c != crate::world::NO_CONTACT).count();
     for (split, keep_all) in [(true, true), (false, false), (true, false)] {
