@@ -272,8 +272,8 @@ impl<'a> Builder<'a> {
     /// [`build`](Self::build) without the points, their couplings and the friction
     /// anchor (see [`prepare_points`]), and the centres of mass of the constraint's two
     /// bodies (a static collider's position). With `lanes` (a batch's loads and this
-    /// contact's lane), the softness is left to the lanes ([`LoadLanes::soften`]) and
-    /// so are the ratios `found` would take.
+    /// contact's lane), the contact is a batched one, and its softness is left to the
+    /// lanes ([`LoadLanes::soften`]), and so are the ratios `found` would take.
     #[inline(always)]
     pub(super) fn header(
         &self,
@@ -286,7 +286,19 @@ impl<'a> Builder<'a> {
         let stiffness = &self.stiffness;
         let (ca, cb) = (&self.colliders[m.a as usize], &self.colliders[m.b as usize]);
         let (sa, sb) = (self.bodies.at(ca.body), self.bodies.at(cb.body));
-        let sides = self.sides((ca, cb), (sa, sb));
+        // A batched contact (`lanes`) has no rolling motion, no turning anisotropic
+        // body and no events (its key said so): only its sides' spins to find.
+        let sides = if lanes.is_some() {
+            Sides {
+                spin: [spins(sa), spins(sb)],
+                arm: [Vec3::ZERO; 2],
+                axis: [Vec3::ZERO; 2],
+                refresh: false,
+                report: false,
+            }
+        } else {
+            self.sides((ca, cb), (sa, sb))
+        };
         let (t1, t2) = m.normal.any_orthonormal_pair();
         let spin = sides.spin;
         // The heaviest body touching either side (or about to) presses through it from
