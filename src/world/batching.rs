@@ -69,6 +69,9 @@ pub(crate) struct ContactBatches {
     start: Vec<u32>,
     /// The part's contacts by level (scratch).
     order: Vec<u32>,
+    /// The scalar contacts in manifold order, the order they are built in (scratch;
+    /// see the solver's `prepare_contacts`).
+    pub scalar_in_order: Vec<u32>,
 }
 
 /// Work a contact pass did over its batches: sweeps over their normal rows, and batches

@@ -252,37 +252,41 @@ impl<'a> Builder<'a> {
         }
     }
 
-    /// The constraint of manifold `m` (manifold `mi` of the step); what it found is
-    /// added to `found` (not `fixed`); its rolling motion, if it has one, pushed onto
-    /// `arms`. One scalar at a time: the reference the lanes' build is tested against.
+    /// The constraint of manifold `m` (manifold `mi` of the step), built into `c`;
+    /// what it found is added to `found` (not `fixed`); its rolling motion, if it has
+    /// one, pushed onto `arms`. One scalar at a time: the reference the lanes' build is
+    /// tested against.
     #[inline(always)]
     pub(super) fn build(
         &self,
+        c: &mut ContactConstraint,
         mi: usize,
         m: &Manifold,
         arms: &mut Vec<RollingArms>,
         found: &mut Prepared,
-    ) -> ContactConstraint {
-        let (mut c, centres) = self.header(mi, m, arms, found, None);
+    ) {
+        let centres = self.header(c, mi, m, arms, found, None);
         let sides = [self.bodies.at(c.a), self.bodies.at(c.b)];
-        prepare_points(&mut c, m, sides, centres);
-        c
+        prepare_points(c, m, sides, centres);
     }
 
     /// [`build`](Self::build) without the points, their couplings and the friction
-    /// anchor (see [`prepare_points`]), and the centres of mass of the constraint's two
-    /// bodies (a static collider's position). With `lanes` (a batch's loads and this
+    /// anchor (see [`prepare_points`]; zero, as for a new constraint), and the centres
+    /// of mass of the constraint's two bodies (a static collider's position). Built in
+    /// place: returned, the 688 bytes were read back before their stores had landed
+    /// (rain's build spent a sixth of its time in that one load). With `lanes` (a batch's loads and this
     /// contact's lane), the contact is a batched one, and its softness is left to the
     /// lanes ([`LoadLanes::soften`]), and so are the ratios `found` would take.
     #[inline(always)]
     pub(super) fn header(
         &self,
+        c: &mut ContactConstraint,
         mi: usize,
         m: &Manifold,
         arms: &mut Vec<RollingArms>,
         found: &mut Prepared,
         lanes: Option<(&mut LoadLanes, usize)>,
-    ) -> (ContactConstraint, [Vec3; 2]) {
+    ) -> [Vec3; 2] {
         let stiffness = &self.stiffness;
         let (ca, cb) = (&self.colliders[m.a as usize], &self.colliders[m.b as usize]);
         let (sa, sb) = (self.bodies.at(ca.body), self.bodies.at(cb.body));
@@ -347,7 +351,7 @@ impl<'a> Builder<'a> {
                 self.overlaps[body as usize]
             }
         };
-        let c = ContactConstraint {
+        *c = ContactConstraint {
             a: ca.body,
             b: cb.body,
             manifold: mi as u32,
@@ -390,7 +394,7 @@ impl<'a> Builder<'a> {
         found.refresh |= c.refresh;
         found.report |= c.report;
         found.bounce |= c.restitution > 0.0;
-        (c, [self.centre(ca), self.centre(cb)])
+        [self.centre(ca), self.centre(cb)]
     }
 }
 

@@ -93,17 +93,17 @@ impl ManifoldLanes {
             s.w.set(l, b.w);
             s.spin.as_array_mut()[l] = if c.spin[k] { ALL } else { 0.0 };
         }
-        for k in 0..MAX_POINTS {
-            let p = &m.points[k];
-            let on = k < m.len;
-            // Absent points add -0: x + (-0) is x, bit for bit.
-            let absent = |x: f32| if on { x } else { -0.0 };
-            self.point[k].set(l, p.point.map(absent));
+        // Only the points it has (a sphere's one of four): the lanes of the others are
+        // masked out where they would count (`has`).
+        for (k, p) in m.points().iter().enumerate() {
+            self.point[k].set(l, p.point);
             self.separation[k].as_array_mut()[l] = p.separation;
             self.normal_impulse[k].as_array_mut()[l] = p.normal_impulse;
-            self.tangent_impulse[k].set(l, p.tangent_impulse.map(absent));
-            self.twist_impulse[k].as_array_mut()[l] = absent(p.twist_impulse);
-            self.has[k].as_array_mut()[l] = if on { ALL } else { 0.0 };
+            self.tangent_impulse[k].set(l, p.tangent_impulse);
+            self.twist_impulse[k].as_array_mut()[l] = p.twist_impulse;
+        }
+        for (k, has) in self.has.iter_mut().enumerate() {
+            has.as_array_mut()[l] = if k < m.len { ALL } else { 0.0 };
         }
         self.count.as_array_mut()[l] = m.len.max(1) as f32;
         self.many.as_array_mut()[l] = if m.len > 1 { ALL } else { 0.0 };
@@ -217,10 +217,18 @@ pub(super) fn compute<L: Lane>(m: &ManifoldLanes, out: BatchOut) {
     let linear = L::load(a.inv_mass) + L::load(b.inv_mass);
     let dv = b.v.get::<L>().sub(a.v.get::<L>());
     let (wa, wb) = (a.w.get::<L>(), b.w.get::<L>());
-    // The points' centre: glam's sum from zero, absent points adding -0.
+    // The points' centre: glam's sum from zero, absent points adding -0 (x + (-0) is
+    // x, bit for bit). Points past the batch's most are absent in every lane.
+    let most = point.len();
+    let absent = V3::<L> {
+        x: L::splat(-0.0),
+        y: L::splat(-0.0),
+        z: L::splat(-0.0),
+    };
     let mut sum = V3::<L>::zero();
-    for p in &m.point {
-        sum = sum.add(p.get::<L>());
+    for k in 0..most {
+        let has = L::load(m.has[k]);
+        sum = sum.add(V3::select(has, m.point[k].get::<L>(), absent));
     }
     let count = L::load(m.count);
     let mid = V3 {
@@ -261,7 +269,8 @@ pub(super) fn compute<L: Lane>(m: &ManifoldLanes, out: BatchOut) {
         }
         rows[k] = row;
     }
-    for j in 1..MAX_POINTS {
+    // (Couplings past the batch's most points stay the zeros the batch was packed with.)
+    for j in 1..most {
         let has = L::load(m.has[j]);
         for k in 0..j {
             let ta = select(spin[0], rows[j][0].dot(rows[k][2]), zero);
@@ -276,9 +285,10 @@ pub(super) fn compute<L: Lane>(m: &ManifoldLanes, out: BatchOut) {
     // sum from -0.
     let mut shares = V3::<L>::zero();
     let mut turn = L::splat(-0.0);
-    for k in 0..MAX_POINTS {
-        shares = shares.add(m.tangent_impulse[k].get::<L>());
-        turn = turn + L::load(m.twist_impulse[k]);
+    for k in 0..most {
+        let has = L::load(m.has[k]);
+        shares = shares.add(V3::select(has, m.tangent_impulse[k].get::<L>(), absent));
+        turn = turn + select(has, L::load(m.twist_impulse[k]), L::splat(-0.0));
     }
     let mut tangent_k = [zero; 2];
     let mut images = [[V3::<L>::zero(); 2]; 2];
