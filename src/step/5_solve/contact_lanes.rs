@@ -2,9 +2,9 @@
 //! arms, normal rows and their masses, twist arms, approach speeds), the couplings
 //! between them and the friction anchor, lane by lane, computed into the lanes the
 //! batch is solved in (`super::prepare_contacts`). What a contact's header needs (its
-//! softness, its flags) branches per manifold and stays scalar (`Builder::header`);
-//! this part is the same arithmetic for every manifold, about 700 flops of one with
-//! four points.
+//! flags, friction, push-out share) branches per manifold and stays scalar
+//! (`Builder::header`; its softness goes in lanes too, `super::contact_load`); this part
+//! is the same arithmetic for every manifold, about 700 flops of one with four points.
 //!
 //! Each lane does glam's operations in glam's order with no fused multiply-add (see
 //! [`crate::math::lanes`]) and the scalar code's branches as selects, so a contact

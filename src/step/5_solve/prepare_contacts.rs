@@ -4,8 +4,9 @@
 //! may solve it); the batches are packed from the keys alone; then each contact is built
 //! and written into its batch's lanes. Only the contacts a later stage reads as
 //! constraints are also kept as constraints: those the scalar pass solves, those with
-//! fixed colliders (the final stop reads them), and all of them when one bounces (for
-//! restitution) or when asked (`keep_all`: tests and benchmarks). Before, every contact
+//! fixed colliders (the final stop reads them), all of them when asked (`keep_all`:
+//! tests and benchmarks), and when one bounces, the rest with what restitution reads
+//! (their rows and masses). Before, every contact
 //! was built into its 688-byte constraint and packed from it: on the 385-cube pyramid,
 //! 1.7 MB written and read again a step.
 
