@@ -214,8 +214,10 @@ pub fn three_operand() -> bool {
 /// taking the same arguments) compiled for AVX2's three-operand forms on a CPU that has
 /// them (see [`three_operand`]), else as compiled plain.
 macro_rules! three_operand_copy {
-    ($(#[$doc:meta])* $vis:vis fn $name:ident / $vex:ident => $any:ident
-        ($($arg:ident: $ty:ty),* $(,)?) $(-> $ret:ty)?) => {
+    // The two copies, calling `$plain` and `$wide` (the same function or two
+    // instantiations of it).
+    (@copies $(#[$doc:meta])* $vis:vis fn $name:ident / $vex:ident
+        => [$($plain:tt)*] [$($wide:tt)*] ($($arg:ident: $ty:ty),*) $(-> $ret:ty)?) => {
         $(#[$doc])*
         $vis fn $name($($arg: $ty),*) $(-> $ret)? {
             #[cfg(target_arch = "x86_64")]
@@ -223,34 +225,26 @@ macro_rules! three_operand_copy {
                 // SAFETY: the CPU has the features (checked just above).
                 return unsafe { $vex($($arg),*) };
             }
-            $any($($arg),*)
+            $($plain)*($($arg),*)
         }
 
         #[cfg(target_arch = "x86_64")]
         #[target_feature(enable = "avx,avx2")]
         fn $vex($($arg: $ty),*) $(-> $ret)? {
-            $any($($arg),*)
+            $($wide)*($($arg),*)
         }
     };
-    // The same, for an `$any` generic over the lanes it computes in: `$plain` in the
-    // plain copy, `$wide` in the AVX2 one.
+    ($(#[$doc:meta])* $vis:vis fn $name:ident / $vex:ident => $any:ident
+        ($($arg:ident: $ty:ty),* $(,)?) $(-> $ret:ty)?) => {
+        $crate::math::lanes::three_operand_copy! { @copies $(#[$doc])* $vis fn $name / $vex
+            => [$any] [$any] ($($arg: $ty),*) $(-> $ret)? }
+    };
+    // For an `$any` generic over the lanes it computes in: `$plain` in the plain copy,
+    // `$wide` in the AVX2 one.
     ($(#[$doc:meta])* $vis:vis fn $name:ident / $vex:ident => $any:ident::<$plain:ty, $wide:ty>
         ($($arg:ident: $ty:ty),* $(,)?) $(-> $ret:ty)?) => {
-        $(#[$doc])*
-        $vis fn $name($($arg: $ty),*) $(-> $ret)? {
-            #[cfg(target_arch = "x86_64")]
-            if $crate::math::lanes::three_operand() {
-                // SAFETY: the CPU has the features (checked just above).
-                return unsafe { $vex($($arg),*) };
-            }
-            $any::<$plain>($($arg),*)
-        }
-
-        #[cfg(target_arch = "x86_64")]
-        #[target_feature(enable = "avx,avx2")]
-        fn $vex($($arg: $ty),*) $(-> $ret)? {
-            $any::<$wide>($($arg),*)
-        }
+        $crate::math::lanes::three_operand_copy! { @copies $(#[$doc])* $vis fn $name / $vex
+            => [$any::<$plain>] [$any::<$wide>] ($($arg: $ty),*) $(-> $ret)? }
     };
 }
 pub(crate) use three_operand_copy;

@@ -107,8 +107,9 @@ fn plane_distance(d: Vec3, normal: Vec3) -> f32 {
 }
 
 /// What [`prepare_contacts`](super::prepare_contacts::prepare_contacts) found out about
-/// the step's contacts while building them, so that no later pass reads the 648-byte constraints for a flag. (Measured on
-/// the 5,050-cube pyramid: inside the noise; it is less work, not a visible win.)
+/// the step's contacts while building them, so that no later pass reads the 688-byte
+/// constraints for a flag. (Measured on the 5,050-cube pyramid: inside the noise; it is
+/// less work, not a visible win.)
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Prepared {
     /// The largest load ratio r of any contact (see [`contact_softness`]; an impact
@@ -274,9 +275,10 @@ impl<'a> Builder<'a> {
     /// anchor (see [`prepare_points`]; zero, as for a new constraint), and the centres
     /// of mass of the constraint's two bodies (a static collider's position). Built in
     /// place: returned, the 688 bytes were read back before their stores had landed
-    /// (rain's build spent a sixth of its time in that one load). With `lanes` (a batch's loads and this
-    /// contact's lane), the contact is a batched one, and its softness is left to the
-    /// lanes ([`LoadLanes::soften`]), and so are the ratios `found` would take.
+    /// (rain's build spent a sixth of its time in that one load). With `lanes` (a
+    /// batch's loads and this contact's lane), the contact is a batched one, and its
+    /// softness is left to the lanes ([`LoadLanes::soften`]), and so are the ratios
+    /// `found` would take.
     #[inline(always)]
     pub(super) fn header(
         &self,

@@ -48,13 +48,17 @@ pub fn prepare_contacts(
     (split, keep_all): (bool, bool),
 ) -> Prepared {
     let builder = Builder::new(colliders, states, bodies, stiffness, per_body);
+    // One pass over the manifolds for their keys and whether any bounces.
+    let mut bounce = false;
     keys.clear();
-    keys.extend(manifolds.iter().map(|m| builder.key(m)));
+    keys.extend(manifolds.iter().map(|m| {
+        bounce |= m.restitution > 0.0;
+        builder.key(m)
+    }));
     let fixed = keys
         .iter()
         .take_while(|k| k.a == STATIC || k.b == STATIC)
         .count();
-    let bounce = manifolds.iter().any(|m| m.restitution > 0.0);
     batches.pack_keyed(keys, bodies, fixed);
     out.resize_with(manifolds.len(), ContactConstraint::default);
     arms.clear();
