@@ -88,6 +88,8 @@ pub(crate) struct ContactBatch {
     /// All-ones lanes where each side's anchor turns with its body.
     pub turn: [F8; 2],
     pub friction: F8,
+    /// See [`ContactConstraint::restitution`].
+    pub restitution: F8,
     /// m/s, see [`ContactConstraint::approach_gain`].
     pub approach_gain: F8,
     pub bias_rate: F8,
@@ -181,6 +183,7 @@ impl ContactBatch {
             inv_inertia: [F8::ZERO; 2],
             turn: [F8::ZERO; 2],
             friction: F8::ZERO,
+            restitution: F8::ZERO,
             approach_gain: F8::ZERO,
             bias_rate: F8::ZERO,
             mass_scale: F8::ZERO,
@@ -269,6 +272,7 @@ impl ContactBatch {
             );
         }
         set(&mut b.friction, l, c.friction);
+        set(&mut b.restitution, l, c.restitution);
         set(&mut b.approach_gain, l, c.approach_gain);
         set(&mut b.bias_rate, l, c.softness.bias_rate);
         set(&mut b.mass_scale, l, c.softness.mass_scale);

@@ -277,9 +277,9 @@ pub struct PhysicsWorld {
     /// never sees, only the collision events.
     pub(crate) sensor_overlaps: Vec<Manifold>,
     /// Contact constraints built by the solver, one place a manifold: those of the
-    /// contacts the scalar pass solves, of those with fixed colliders, and all when one
-    /// bounces or `keep_constraints` asks (a batched contact is built straight into its
-    /// lanes; its place holds whatever it held).
+    /// contacts the scalar pass solves, of those with fixed colliders, and all when
+    /// `keep_constraints` asks (a batched contact is built straight into its lanes; its
+    /// place holds whatever it held).
     pub(crate) constraints: Vec<ContactConstraint>,
     /// Keep every contact's constraint (tests and benchmarks that read them).
     pub(crate) keep_constraints: bool,

@@ -318,7 +318,7 @@ pub(super) fn compute<L: Lane>(m: &ManifoldLanes, out: BatchOut) {
 
 impl ConstraintExtras {
     /// Lane `l` of a batch (see [`BatchOut`]) into the constraint `c` of manifold `m`
-    /// (its header already built): `whole`, or only what restitution reads.
+    /// (its header already built).
     #[inline(always)]
     pub(super) fn write(
         &self,
@@ -331,7 +331,6 @@ impl ConstraintExtras {
         ),
         m: &Manifold,
         c: &mut ContactConstraint,
-        whole: bool,
     ) {
         let f = |v: &F8| v.as_array_ref()[l];
         let row = |ra: &V3, rb: &V3, [ia, ib]: &[V3; 2]| AngularRow {
@@ -340,17 +339,6 @@ impl ConstraintExtras {
             ia: ia.lane(l),
             ib: ib.lane(l),
         };
-        if !whole {
-            // Kept for restitution alone, which reads the points' rows and masses (their
-            // impulses and approach speeds come back with the batch's): the rest stays
-            // as the header left it, zero.
-            for (k, cp) in c.points[..m.len].iter_mut().enumerate() {
-                let o = &point[k];
-                cp.normal_row = row(&o.normal_ra, &o.normal_rb, &self.normal_images[k]);
-                cp.normal_mass = f(&o.normal_mass);
-            }
-            return;
-        }
         for (k, cp) in c.points[..m.len].iter_mut().enumerate() {
             let (o, an) = (&point[k], &anchor[k]);
             *cp = ConstraintPoint {

@@ -3,6 +3,7 @@
 //! Only bodies that touch something are solved; they restart from the beginning of the
 //! step and run the [`SolverStage`]s in order. Everything else keeps stage 2's free motion.
 
+mod bounce;
 mod contact;
 mod contact_lanes;
 mod contact_load;
@@ -38,10 +39,11 @@ use crate::world::{
     ContactBatches, ContactParams, PhysicsWorld, STATIC, SolveWork, is_isotropic, world_inv_inertia,
 };
 
+use bounce::restitution_steps;
 pub use contact::refresh_rows;
 pub use continuous::sweep_against_fixed;
 use crew::{Crew, StopOnDrop};
-pub use iterate::{apply_restitution, stop_approach};
+pub use iterate::stop_approach;
 #[cfg(feature = "bench-internals")]
 pub(crate) use iterate::{solve_listed, warm_start_listed};
 use joint::{solve_joints, warm_start_joints};
@@ -56,7 +58,8 @@ pub use store::sum_impulses;
 use survey::{PerBody, survey_contacts};
 
 /// The solver's stages in execution order. `PrepareContacts` runs once per step; the
-/// five substep stages run `substeps` times; `Restitution` and `StoreImpulses` once.
+/// five substep stages run `substeps` times; `Restitution`, `StopApproach` and
+/// `StoreImpulses` once.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum SolverStage {
     PrepareContacts,
@@ -66,6 +69,7 @@ pub enum SolverStage {
     IntegratePositions,
     Relax,
     Restitution,
+    StopApproach,
     StoreImpulses,
 }
 
@@ -207,17 +211,17 @@ pub fn solve_contacts(
     } else {
         substeps(world, scratch, None);
     }
-    // Back to their constraints: the contacts a later stage reads as constraints (see
-    // `store`): those with fixed colliders (the final stop), or all when some bounce.
-    let batches = &scratch.batches;
-    scratch.written_back = if effects.restitution && scratch.bounce {
-        batches.batches.len()
-    } else {
-        batches.fixed_batches
-    };
-    batches.write_back(0..scratch.written_back, &mut world.constraints);
     if effects.restitution {
         run(SolverStage::Restitution, world, scratch, None);
+    }
+    // Back to their constraints: the batched contacts with fixed colliders, which the
+    // final stop reads as constraints (the rest are stored from their lanes: see
+    // `store`).
+    let batches = &scratch.batches;
+    scratch.written_back = batches.fixed_batches;
+    batches.write_back(0..scratch.written_back, &mut world.constraints);
+    if effects.restitution {
+        run(SolverStage::StopApproach, world, scratch, None);
     }
     if scratch.report {
         sum_impulses(
@@ -388,11 +392,15 @@ fn run_stage(
             }
         }
         SolverStage::Restitution => {
-            // (Not even a scan over the constraints when none bounces.)
+            // (Not even a scan over the contacts when none bounces.) The batched ones
+            // bounce in their lanes (see `bounce`).
             if scratch.bounce {
                 let threshold = settings.restitution_threshold;
-                apply_restitution(bodies, &mut world.constraints, threshold);
+                let (c, batches) = (&mut world.constraints, &mut scratch.batches);
+                restitution_steps(bodies, c, batches, threshold);
             }
+        }
+        SolverStage::StopApproach => {
             // A bounce between two bodies can send one into a wall it is touching; the
             // world has the last word here too.
             let fixed = scratch.fixed_constraints;

@@ -4,11 +4,10 @@
 //! may solve it); the batches are packed from the keys alone; then each contact is built
 //! and written into its batch's lanes. Only the contacts a later stage reads as
 //! constraints are also kept as constraints: those the scalar pass solves, those with
-//! fixed colliders (the final stop reads them), all of them when asked (`keep_all`:
-//! tests and benchmarks), and when one bounces, the rest with what restitution reads
-//! (their rows and masses). Before, every contact
-//! was built into its 688-byte constraint and packed from it: on the 385-cube pyramid,
-//! 1.7 MB written and read again a step.
+//! fixed colliders (the final stop reads them), and all of them when asked (`keep_all`:
+//! tests and benchmarks); restitution bounces the batched ones in their lanes. Before,
+//! every contact was built into its 688-byte constraint and packed from it: on the
+//! 385-cube pyramid, 1.7 MB written and read again a step.
 
 use super::contact::{Builder, Prepared};
 use super::contact_lanes::{BatchOut, ConstraintExtras, ManifoldLanes, compute};
@@ -48,13 +47,9 @@ pub fn prepare_contacts(
     (split, keep_all): (bool, bool),
 ) -> Prepared {
     let builder = Builder::new(colliders, states, bodies, stiffness, per_body);
-    // One pass over the manifolds for their keys and whether any bounces.
-    let mut bounce = false;
+    // One pass over the manifolds for their keys.
     keys.clear();
-    keys.extend(manifolds.iter().map(|m| {
-        bounce |= m.restitution > 0.0;
-        builder.key(m)
-    }));
+    keys.extend(manifolds.iter().map(|m| builder.key(m)));
     let fixed = keys
         .iter()
         .take_while(|k| k.a == STATIC || k.b == STATIC)
@@ -62,19 +57,12 @@ pub fn prepare_contacts(
     batches.pack_keyed(keys, bodies, fixed);
     out.resize_with(manifolds.len(), ContactConstraint::default);
     arms.clear();
-    // Batched contacts below this place are kept as constraints too.
-    let keep_below = if keep_all || bounce {
-        manifolds.len()
-    } else {
-        fixed
-    };
-    // Below this place they are kept whole; between it and `keep_below`, kept for
-    // restitution alone (the rows and masses it reads; written out whole, every lane
-    // of a bouncing scene cost rain 3-4 % of its step).
-    let whole_below = if keep_all { manifolds.len() } else { fixed };
+    // Batched contacts below this place are kept as constraints too (restitution
+    // bounces the others in their lanes: see `bounce`).
+    let keep_below = if keep_all { manifolds.len() } else { fixed };
     let constraints = Shared::new(out);
     let job = |part: Part, scalar: &[u32], arms: &mut Vec<RollingArms>| {
-        let shared = (&builder, manifolds, (keep_below, whole_below), constraints);
+        let shared = (&builder, manifolds, keep_below, constraints);
         build_part(shared, part, scalar, arms)
     };
     let job = &job;
@@ -140,7 +128,6 @@ pub fn prepare_contacts(
         }
     };
     found.fixed = fixed;
-    debug_assert_eq!(found.bounce, bounce, "bounce found as the keys were made");
     found
 }
 
@@ -187,7 +174,7 @@ impl Part<'_> {
 type PartShared<'a> = (
     &'a Builder<'a>,
     &'a [Manifold],
-    (usize, usize),
+    usize,
     Shared<ContactConstraint>,
 );
 
@@ -204,7 +191,7 @@ three_operand_copy! {
 
 #[inline(always)]
 fn build_part_any<L: Lane>(
-    (builder, manifolds, (keep_below, whole_below), constraints): PartShared,
+    (builder, manifolds, keep_below, constraints): PartShared,
     part: Part,
     scalar: &[u32],
     arms: &mut Vec<RollingArms>,
@@ -282,7 +269,7 @@ fn build_part_any<L: Lane>(
                 if ci < keep_below {
                     // SAFETY: as `keep`'s.
                     let c = unsafe { &mut constraints.slice(ci..ci + 1)[0] };
-                    extras.write(l, lanes, &manifolds[ci], c, ci < whole_below);
+                    extras.write(l, lanes, &manifolds[ci], c);
                 }
             }
         }

@@ -3,8 +3,9 @@
 //!
 //! A batched contact's impulses live in its batch's lanes until the passes end. Only
 //! the contacts a later stage reads as constraints go back to them (`written_back`: the
-//! batches of the contacts with fixed colliders, which the final stop reads, or all of
-//! them when something bounces); the rest go from the lanes straight to their manifolds.
+//! batches of the contacts with fixed colliders, which the final stop reads; restitution
+//! bounces the others in their lanes, see `bounce`); the rest go from the lanes straight
+//! to their manifolds.
 //! Before, every batch was written back to its 648-byte constraint and then read from
 //! it again (100 pyramids: 1.0 and 1.1 ms a step).
 //!

@@ -18,7 +18,7 @@ use crate::world::{
 use super::iterate::{NORMAL_SWEEPS, NORMAL_TOL};
 
 /// One side's bodies of a batch: what the passes change and read.
-struct BodyLanes<L> {
+pub(super) struct BodyLanes<L> {
     v: V3<L>,
     w: V3<L>,
     inv_mass: L,
@@ -61,7 +61,7 @@ impl<L: Lane> PoseLanes<L> {
 
 impl<L: Lane> BodyLanes<L> {
     #[inline(always)]
-    fn gather(bodies: &(impl BodyView + ?Sized), index: [u32; LANES]) -> Self {
+    pub(super) fn gather(bodies: &(impl BodyView + ?Sized), index: [u32; LANES]) -> Self {
         let b = at_lanes(bodies, index);
         Self {
             v: V3::gather(b.map(|b| b.v)),
@@ -72,7 +72,7 @@ impl<L: Lane> BodyLanes<L> {
 
     /// Velocities back to the bodies the contacts move.
     #[inline(always)]
-    fn scatter(
+    pub(super) fn scatter(
         &self,
         bodies: &mut (impl BodyView + ?Sized),
         index: [u32; LANES],
@@ -88,7 +88,7 @@ impl<L: Lane> BodyLanes<L> {
 
     /// Impulse `p` with its angular part on this side: +p on body b, −p on body a.
     #[inline(always)]
-    fn push(&mut self, p: V3<L>, angular: V3<L>, on_b: bool) {
+    pub(super) fn push(&mut self, p: V3<L>, angular: V3<L>, on_b: bool) {
         if on_b {
             self.v = self.v.add(p.scale(self.inv_mass));
             self.w = self.w.add(angular);
@@ -100,15 +100,15 @@ impl<L: Lane> BodyLanes<L> {
 }
 
 /// What every pass reads of a batch besides its points, in the lanes it computes in.
-struct Shape<L> {
-    normal: V3<L>,
+pub(super) struct Shape<L> {
+    pub normal: V3<L>,
     /// Each side's inverse inertia (see [`ContactBatch::inv_inertia`]).
-    inv_inertia: [L; 2],
+    pub inv_inertia: [L; 2],
 }
 
 impl<L: Lane> Shape<L> {
     #[inline(always)]
-    fn of(c: &ContactBatch) -> Self {
+    pub(super) fn of(c: &ContactBatch) -> Self {
         Self {
             normal: c.normal.get(),
             inv_inertia: c.inv_inertia.map(L::load),
@@ -150,7 +150,12 @@ fn row_velocity<L: Lane>(a: &BodyLanes<L>, b: &BodyLanes<L>, d: V3<L>, row: &Row
 /// The normal velocity of b relative to a at a point, from its prepared lever arms (the
 /// scalar pass's `row_velocity`, lane by lane).
 #[inline(always)]
-fn normal_velocity<L: Lane>(a: &BodyLanes<L>, b: &BodyLanes<L>, n: V3<L>, p: &PointLanes) -> L {
+pub(super) fn normal_velocity<L: Lane>(
+    a: &BodyLanes<L>,
+    b: &BodyLanes<L>,
+    n: V3<L>,
+    p: &PointLanes,
+) -> L {
     n.dot(b.v.sub(a.v)) - a.w.dot(p.normal_ra.get()) + b.w.dot(p.normal_rb.get())
 }
 
@@ -239,6 +244,7 @@ macro_rules! dispatch {
         }
     };
 }
+pub(super) use dispatch;
 
 dispatch! {
     /// [`warm_start_listed`](super::iterate::warm_start_listed) over the batches.

@@ -5,8 +5,9 @@
 
 use bevy::prelude::*;
 
+use super::bounce::restitution_steps;
 use super::contact::friction_anchor;
-use super::iterate::{apply_normal, solve_listed, warm_start_listed};
+use super::iterate::{apply_normal, apply_restitution, solve_listed, warm_start_listed};
 use super::{Pass, solve_steps, warm_start_steps};
 use crate::math::Softness;
 use crate::rng::Rnd;
@@ -258,4 +259,59 @@ fn couplings_are_the_velocity_change_of_a_unit_impulse() {
         }
     }
     assert!(checked > 500, "only {checked} pairs of points checked");
+}
+
+/// Restitution where the contacts are solved (the batched ones in their lanes, in pass
+/// order) against `apply_restitution` over every constraint in contact order, in each
+/// compiled copy: the same velocities and impulses, bit for bit.
+#[test]
+fn batched_restitution_computes_the_scalar_one_bit_for_bit() {
+    for plain in [false, true] {
+        crate::math::lanes::PLAIN_ONLY.set(plain);
+        batched_restitution_matches_scalar();
+    }
+}
+
+fn batched_restitution_matches_scalar() {
+    const BODIES: usize = 160;
+    const CONTACTS: usize = 400;
+    const FIXED: usize = 60;
+    const THRESHOLD: f32 = 1.0;
+    let mut r = Rnd(0x5eed_0041);
+    let mut bounced = 0;
+    for round in 0..20 {
+        let bodies: Vec<SolverBody> = (0..BODIES).map(|_| random_body(&mut r)).collect();
+        let mut scalar_constraints: Vec<ContactConstraint> = (0..CONTACTS)
+            .map(|i| {
+                let mut c = random_contact(&mut r, &bodies, i < FIXED);
+                c.restitution = if r.unit() < 0.3 {
+                    0.0
+                } else {
+                    r.range(0.1, 1.0)
+                };
+                c
+            })
+            .collect();
+        let mut constraints = scalar_constraints.clone();
+        let mut batches = ContactBatches::default();
+        batches.build(&constraints, &bodies, FIXED);
+        let (mut lanes, mut scalar) = (bodies.clone(), bodies.clone());
+        restitution_steps(&mut lanes, &mut constraints, &mut batches, THRESHOLD);
+        apply_restitution(&mut scalar, &mut scalar_constraints, THRESHOLD);
+        assert_same(&lanes, &scalar, &format!("round {round}: restitution"));
+        batches.write_back(0..batches.batches.len(), &mut constraints);
+        for (i, (x, y)) in constraints.iter().zip(&scalar_constraints).enumerate() {
+            for (p, q) in x.points[..x.len].iter().zip(&y.points) {
+                assert!(
+                    p.normal_impulse.to_bits() == q.normal_impulse.to_bits()
+                        && p.max_normal_impulse.to_bits() == q.max_normal_impulse.to_bits(),
+                    "round {round}: contact {i}: {p:?} against {q:?}"
+                );
+            }
+        }
+        let moved = lanes.iter().zip(&bodies).filter(|(x, y)| x.v != y.v);
+        bounced += moved.count();
+    }
+    // Something must have bounced for the comparison to mean anything.
+    assert!(bounced > 500, "only {bounced} bodies moved by restitution");
 }
