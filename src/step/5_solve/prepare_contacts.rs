@@ -22,10 +22,12 @@ use crate::world::{
 };
 
 /// Manifolds from which the contacts are built on two threads (when the compute pool
-/// has them): a helper takes about 30 µs to wake. (On the 385-cube pyramid's 2,432
-/// manifolds, splitting from 1,024 or from 4,096 measured the same within the noise; on
-/// 100 pyramids' 14,500 it took 1.2-1.4 ms off the step.)
-pub const PARALLEL_PREPARE_FROM: usize = 1024;
+/// has them): a helper takes about 30 µs to wake. On 100 pyramids' 14,500 manifolds
+/// splitting took 1.2-1.4 ms off the step. On the 385-cube pyramid's 2,432 it measured
+/// the same as not in `stage_times` (tumble's app alone), but in `peers` at two threads,
+/// where avian's app shares the pool, splitting from 1,024 left the step at 2.25-2.28 ms
+/// against 2.10-2.19 from 4,096 (three interleaved runs).
+pub const PARALLEL_PREPARE_FROM: usize = 4096;
 
 /// Batches ahead of the one being built whose manifolds are fetched (their colliders one
 /// batch nearer, their bodies nearer still).
