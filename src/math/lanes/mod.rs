@@ -269,6 +269,16 @@ thread_local! {
     pub static PLAIN_ONLY: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
 }
 
+/// Runs `check` in each compiled copy of the hot loops: the plain one, then the one
+/// this CPU picks (see [`PLAIN_ONLY`]).
+#[cfg(test)]
+pub fn in_each_copy(mut check: impl FnMut()) {
+    for plain in [true, false] {
+        PLAIN_ONLY.set(plain);
+        check();
+    }
+}
+
 /// The lanes of eight values.
 #[inline(always)]
 pub fn lanes(v: [f32; WIDTH]) -> F8 {

@@ -94,9 +94,6 @@ pub struct SolverScratch {
     /// [`solve_batches`](wide::solve_batches)): a substep's Relax measures them, and the
     /// next substep's Solve, before which nothing moves, reads them.
     measured: bool,
-    /// How many batches, at the front, had their impulses written back to their
-    /// constraints (the rest are stored from their lanes: see `store`).
-    written_back: usize,
     /// Whether this step's passes over all contacts, and over the fixed ones, split their
     /// wide levels between threads (decided once a step: `split::worth_splitting`).
     split: [bool; 2],
@@ -218,8 +215,7 @@ pub fn solve_contacts(
     // final stop reads as constraints (the rest are stored from their lanes: see
     // `store`).
     let batches = &scratch.batches;
-    scratch.written_back = batches.fixed_batches;
-    batches.write_back(0..scratch.written_back, &mut world.constraints);
+    batches.write_back(0..batches.fixed_batches, &mut world.constraints);
     if effects.restitution {
         run(SolverStage::StopApproach, world, scratch, None);
     }
@@ -407,7 +403,7 @@ fn run_stage(
             stop_approach(bodies, &mut world.constraints[..fixed], &world.rolling_arms);
         }
         SolverStage::StoreImpulses => {
-            store_impulses(world, &scratch.batches, scratch.written_back);
+            store_impulses(world, &scratch.batches);
             store_joint_forces(&mut world.joints, &world.solver_bodies, h);
         }
     }

@@ -150,10 +150,7 @@ fn compare(world: &PhysicsWorld, per_body: &PerBody, n: usize, what: &str) -> (u
 fn constraints_built_in_halves_are_the_same_bits() {
     ComputeTaskPool::get_or_init(|| TaskPoolBuilder::new().num_threads(2).build());
     // The plain copy of the lanes' build, then (on a CPU with AVX2) the AVX one.
-    for plain in [true, false] {
-        crate::math::lanes::PLAIN_ONLY.set(plain);
-        compare_scenes();
-    }
+    crate::math::lanes::in_each_copy(compare_scenes);
 }
 
 fn compare_scenes() {

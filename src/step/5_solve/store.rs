@@ -2,10 +2,10 @@
 //! the next step) and the warm-start cache.
 //!
 //! A batched contact's impulses live in its batch's lanes until the passes end. Only
-//! the contacts a later stage reads as constraints go back to them (`written_back`: the
-//! batches of the contacts with fixed colliders, which the final stop reads; restitution
-//! bounces the others in their lanes, see `bounce`); the rest go from the lanes straight
-//! to their manifolds.
+//! the contacts a later stage reads as constraints go back to them (the batches of the
+//! contacts with fixed colliders, which the final stop reads; restitution bounces the
+//! others in their lanes, see `bounce`); the rest go from the lanes straight to their
+//! manifolds.
 //! Before, every batch was written back to its 648-byte constraint and then read from
 //! it again (100 pyramids: 1.0 and 1.1 ms a step).
 //!
@@ -21,53 +21,45 @@ use crate::world::{
 /// How many batches ahead of the one being stored its manifolds are fetched.
 const PREFETCH_AHEAD: usize = 2;
 
-/// Stores the step's impulses: from the constraints for every contact but those of
-/// `batches.batches[written_back..]`, which are stored from their lanes.
-pub(super) fn store_impulses(
-    world: &mut PhysicsWorld,
-    batches: &ContactBatches,
-    written_back: usize,
-) {
+/// Stores the step's impulses: from the constraints for the scalar contacts and the
+/// batched ones with fixed colliders (written back for the final stop), from their lanes
+/// for the other batched ones.
+pub(super) fn store_impulses(world: &mut PhysicsWorld, batches: &ContactBatches) {
     let (constraints, manifolds) = (&world.constraints, &mut world.manifolds);
-    if written_back >= batches.batches.len() {
-        for c in constraints {
-            store_constraint(c, manifolds);
+    let written_back = batches.fixed_batches;
+    let batched = batches.batches[..written_back]
+        .iter()
+        .flat_map(|b| b.contact);
+    let scalar = batches.scalar.iter().copied();
+    for ci in batched.chain(scalar).filter(|&c| c != NO_CONTACT) {
+        store_constraint(&constraints[ci as usize], manifolds);
+    }
+    let (lanes, friction) = (
+        &batches.batches[written_back..],
+        &batches.friction[written_back..],
+    );
+    for (j, (b, f)) in lanes.iter().zip(friction).enumerate() {
+        // A level's contacts sit all over the manifold list: fetched a batch ahead.
+        if let Some(next) = lanes.get(j + PREFETCH_AHEAD) {
+            let valid = next.contact.iter().filter(|&&c| c != NO_CONTACT);
+            valid.for_each(|&c| prefetch(&manifolds[c as usize]));
         }
-    } else {
-        let batched = batches.batches[..written_back]
-            .iter()
-            .flat_map(|b| b.contact);
-        let scalar = batches.scalar.iter().copied();
-        for ci in batched.chain(scalar).filter(|&c| c != NO_CONTACT) {
-            store_constraint(&constraints[ci as usize], manifolds);
-        }
-        let (lanes, friction) = (
-            &batches.batches[written_back..],
-            &batches.friction[written_back..],
-        );
-        for (j, (b, f)) in lanes.iter().zip(friction).enumerate() {
-            // A level's contacts sit all over the manifold list: fetched a batch ahead.
-            if let Some(next) = lanes.get(j + PREFETCH_AHEAD) {
-                let valid = next.contact.iter().filter(|&&c| c != NO_CONTACT);
-                valid.for_each(|&c| prefetch(&manifolds[c as usize]));
+        let points = &batches.points[b.range()];
+        let tangents = b.tangents();
+        for (l, &ci) in b.contact.iter().enumerate() {
+            if ci == NO_CONTACT {
+                continue;
             }
-            let points = &batches.points[b.range()];
-            let tangents = b.tangents();
-            for (l, &ci) in b.contact.iter().enumerate() {
-                if ci == NO_CONTACT {
-                    continue;
-                }
-                let m = &mut manifolds[ci as usize];
-                let lane = |x: &crate::math::lanes::F8| x.as_array_ref()[l];
-                let (mut impulses, mut approach) = ([0.0; MAX_POINTS], [0.0; MAX_POINTS]);
-                for ((i, a), p) in impulses.iter_mut().zip(&mut approach).zip(points) {
-                    (*i, *a) = (lane(&p.normal_impulse), lane(&p.relative_velocity));
-                }
-                let t = [lane(&f.tangent_impulse[0]), lane(&f.tangent_impulse[1])];
-                let tangent = tangents[0].lane(l) * t[0] + tangents[1].lane(l) * t[1];
-                let shares = shares_of(&impulses[..m.len], tangent, lane(&f.twist_impulse));
-                store_manifold(m, &impulses, &approach, shares);
+            let m = &mut manifolds[ci as usize];
+            let lane = |x: &crate::math::lanes::F8| x.as_array_ref()[l];
+            let (mut impulses, mut approach) = ([0.0; MAX_POINTS], [0.0; MAX_POINTS]);
+            for ((i, a), p) in impulses.iter_mut().zip(&mut approach).zip(points) {
+                (*i, *a) = (lane(&p.normal_impulse), lane(&p.relative_velocity));
             }
+            let t = [lane(&f.tangent_impulse[0]), lane(&f.tangent_impulse[1])];
+            let tangent = tangents[0].lane(l) * t[0] + tangents[1].lane(l) * t[1];
+            let shares = shares_of(&impulses[..m.len], tangent, lane(&f.twist_impulse));
+            store_manifold(m, &impulses, &approach, shares);
         }
     }
     let colliders = &world.colliders;

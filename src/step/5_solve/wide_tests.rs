@@ -143,10 +143,7 @@ pub(super) fn assert_same(bodies: &[SolverBody], reference: &[SolverBody], what:
 /// one this CPU picks, and the plain one.
 #[test]
 fn batched_passes_compute_the_scalar_passes_bit_for_bit() {
-    for plain in [false, true] {
-        crate::math::lanes::PLAIN_ONLY.set(plain);
-        batched_passes_match_scalar();
-    }
+    crate::math::lanes::in_each_copy(batched_passes_match_scalar);
 }
 
 fn batched_passes_match_scalar() {
@@ -266,10 +263,7 @@ fn couplings_are_the_velocity_change_of_a_unit_impulse() {
 /// compiled copy: the same velocities and impulses, bit for bit.
 #[test]
 fn batched_restitution_computes_the_scalar_one_bit_for_bit() {
-    for plain in [false, true] {
-        crate::math::lanes::PLAIN_ONLY.set(plain);
-        batched_restitution_matches_scalar();
-    }
+    crate::math::lanes::in_each_copy(batched_restitution_matches_scalar);
 }
 
 fn batched_restitution_matches_scalar() {
