@@ -8,6 +8,7 @@
 
 use bevy::prelude::*;
 
+use crate::math::lanes::three_operand_copy;
 use crate::world::{
     AngularRow, ConstraintPoint, ContactConstraint, FrictionAnchor, MAX_POINTS, RollingArms,
     SolverBody, body, coupling_index, normal_couplings, row_velocity, store,
@@ -112,10 +113,19 @@ fn apply_tangent(
     apply(a, b, p, ang, spin);
 }
 
-/// Applies last step's accumulated impulses (already in the constraints) of the listed
-/// contacts (the scalar ones of a step, [`SolveStep::Scalar`](crate::world::SolveStep);
-/// the batched ones have their own pass).
-pub fn warm_start_listed(
+three_operand_copy! {
+    /// Applies last step's accumulated impulses (already in the constraints) of the listed
+    /// contacts (the scalar ones of a step, [`SolveStep::Scalar`](crate::world::SolveStep);
+    /// the batched ones have their own pass).
+    pub fn warm_start_listed / warm_start_listed_vex => warm_start_listed_any(
+        bodies: &mut [SolverBody],
+        constraints: &[ContactConstraint],
+        listed: &[u32],
+    )
+}
+
+#[inline(always)]
+fn warm_start_listed_any(
     bodies: &mut [SolverBody],
     constraints: &[ContactConstraint],
     listed: &[u32],
@@ -146,17 +156,29 @@ fn warm_start_one(bodies: &mut [SolverBody], c: &ContactConstraint) {
     store(bodies, c.b, b);
 }
 
-/// One Gauss–Seidel pass over the listed contacts (the scalar ones of a step; the batched
-/// ones have their own pass, lane by lane the same as this): for each manifold, the
-/// normal rows of all its points (soft with bias, or rigid when relaxing), then its
-/// friction anchor's disc clamped to μ·Σλn and twist clamped to μ·Σ λn·arm with the
-/// updated normal impulses.
-/// Accumulated impulses are clamped, never increments. Speculative points (s > 0) may
-/// close their gap, not more. Impulses act at the start-of-step anchors; the separation
-/// follows the anchors as the bodies move and turn. `measure`: the bodies moved since the
-/// separations were last measured (as for [`solve_batches`](super::wide::solve_batches));
-/// else the pass reads the ones it stored, the same bits.
-pub fn solve_listed(
+three_operand_copy! {
+    /// One Gauss–Seidel pass over the listed contacts (the scalar ones of a step; the batched
+    /// ones have their own pass, lane by lane the same as this): for each manifold, the
+    /// normal rows of all its points (soft with bias, or rigid when relaxing), then its
+    /// friction anchor's disc clamped to μ·Σλn and twist clamped to μ·Σ λn·arm with the
+    /// updated normal impulses.
+    /// Accumulated impulses are clamped, never increments. Speculative points (s > 0) may
+    /// close their gap, not more. Impulses act at the start-of-step anchors; the separation
+    /// follows the anchors as the bodies move and turn. `measure`: the bodies moved since the
+    /// separations were last measured (as for [`solve_batches`](super::wide::solve_batches));
+    /// else the pass reads the ones it stored, the same bits.
+    pub fn solve_listed / solve_listed_vex => solve_listed_any(
+        bodies: &mut [SolverBody],
+        constraints: &mut [ContactConstraint],
+        listed: &[u32],
+        arms: &[RollingArms],
+        h: f32,
+        flags: (bool, bool),
+    )
+}
+
+#[inline(always)]
+fn solve_listed_any(
     bodies: &mut [SolverBody],
     constraints: &mut [ContactConstraint],
     listed: &[u32],
