@@ -14,7 +14,7 @@ mod joint;
 mod manifold;
 mod warm_start_cache;
 
-pub(crate) use awake_tree::AwakeTree;
+pub(crate) use awake_tree::{AwakeTree, Leaf};
 pub(crate) use batching::{
     ContactBatches, ContactKey, LANES, NO_CONTACT, SolveStep, SolveWork, prefetch,
 };

@@ -24,7 +24,9 @@ use crate::limits::MAX_PAIRS_PER_STEP;
 use crate::settings::SolverSettings;
 #[cfg(doc)]
 use crate::world::AwakeTree;
-use crate::world::{ColliderEntry, PhysicsWorld, STATIC};
+#[cfg(any(test, feature = "bench-internals"))]
+use crate::world::ColliderEntry;
+use crate::world::{Leaf, PhysicsWorld, STATIC};
 
 #[cfg(test)]
 use brute_force::brute_force_pairs;
@@ -60,9 +62,15 @@ pub fn find_pairs(
         let colliders = &world.colliders;
         let tree = world.awake_tree.get_mut();
         let tree = tree.unwrap_or_else(|e| e.into_inner());
-        let aabb = |i: usize| (colliders[i].aabb_min, colliders[i].aabb_max);
-        let keep = |a: u32, b: u32| candidate(&colliders[a as usize], &colliders[b as usize]);
-        tree.pairs(colliders.len(), aabb, keep, &mut world.pairs, cap)
+        let leaf = |i: usize| {
+            let c = &colliders[i];
+            Leaf {
+                lo: c.aabb_min,
+                hi: c.aabb_max,
+                body: c.body,
+            }
+        };
+        tree.pairs(colliders.len(), leaf, &mut world.pairs, cap)
     };
 
     world.fixed.update_search();
@@ -121,12 +129,14 @@ pub fn update_bounds(world: &mut PhysicsWorld, margin: f32) {
     }
 }
 
+#[cfg(any(test, feature = "bench-internals"))]
 fn overlaps(a: &ColliderEntry, b: &ColliderEntry) -> bool {
     a.aabb_min.cmple(b.aabb_max).all() && b.aabb_min.cmple(a.aabb_max).all()
 }
 
 /// A pair is only kept if at least one side can move; static–static and colliders of the
-/// same body never collide.
+/// same body never collide. (The reference for [`Leaf`]'s rule, which the tree applies.)
+#[cfg(any(test, feature = "bench-internals"))]
 fn candidate(a: &ColliderEntry, b: &ColliderEntry) -> bool {
     (a.body != STATIC || b.body != STATIC) && a.body != b.body && overlaps(a, b)
 }

@@ -3,9 +3,9 @@
 //! the fixed set, after random inserts, moves and removals, finds exactly what testing
 //! every entry finds.
 
-use super::{SweepAndPrune, brute_force_pairs, candidate};
+use super::{SweepAndPrune, brute_force_pairs};
 use crate::collider::Shape;
-use crate::world::AwakeTree;
+use crate::world::{AwakeTree, Leaf};
 use crate::world::{ColliderEntry, FixedSet, STATIC};
 use bevy::prelude::*;
 use proptest::prelude::*;
@@ -108,30 +108,75 @@ proptest! {
     }
 }
 
+/// The tree's pairs of `colliders` this step, sorted.
+fn tree_pairs(
+    tree: &mut AwakeTree,
+    colliders: &[ColliderEntry],
+    cap: usize,
+) -> (Vec<(u32, u32)>, bool) {
+    let leaf = |i: usize| Leaf {
+        lo: colliders[i].aabb_min,
+        hi: colliders[i].aabb_max,
+        body: colliders[i].body,
+    };
+    let mut pairs = Vec::new();
+    let full = tree.pairs(colliders.len(), leaf, &mut pairs, cap);
+    pairs.sort_unstable();
+    (pairs, full)
+}
+
+fn shift(c: &mut ColliderEntry, by: Vec3) {
+    c.aabb_min += by;
+    c.aabb_max += by;
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(30))]
-    /// The tree, over successive steps: moved boxes (refit), then fewer colliders (built
-    /// afresh), then moved again: every time exactly the reference pairs.
+    /// The tree, over successive steps, finds exactly the reference pairs every time:
+    /// boxes that barely move (they stay in their enlarged boxes: the kept candidates),
+    /// a few that move far (their candidates found again one by one), all moving far
+    /// (the tree traversed again), fewer colliders (built afresh), the same number of
+    /// colliders in another order and with some sharing a body (leaf i is another
+    /// collider), a spatial query's refit in between, and a pair cap hit then lifted.
     #[test]
     fn tree_matches_brute_force_over_steps(seed in any::<u64>()) {
         let mut colliders = scene(seed);
         let mut tree = AwakeTree::default();
-        let (mut reference, mut fast) = (Vec::new(), Vec::new());
-        for step in 0..4 {
-            if step == 2 {
-                colliders.truncate(350);
-            }
+        let mut reference = Vec::new();
+        for step in 0..10usize {
+            let n = colliders.len();
             for (k, c) in colliders.iter_mut().enumerate() {
-                let shift = bevy::prelude::Vec3::new(((k + step) % 5) as f32 - 2.0, 0.1, -0.2) * 0.2;
-                c.aabb_min += shift;
-                c.aabb_max += shift;
+                let jitter = Vec3::new(((k + step) % 5) as f32 - 2.0, 0.1, -0.2) * 1e-3;
+                let far = match step {
+                    2 | 3 => k % 37 == step,
+                    4 => true,
+                    _ => false,
+                };
+                let by = if far { Vec3::new(((k + step) % 5) as f32 - 2.0, 0.1, -0.2) * 0.6 } else { jitter };
+                shift(c, by);
+            }
+            match step {
+                5 => colliders.truncate(350),
+                6 => {
+                    colliders.reverse();
+                    for k in (0..colliders.len()).step_by(7) {
+                        if k + 1 < colliders.len() && colliders[k].body != STATIC {
+                            colliders[k + 1].body = colliders[k].body;
+                        }
+                    }
+                }
+                8 => tree.fit(n, |i| (colliders[i].aabb_min, colliders[i].aabb_max + Vec3::ONE)),
+                _ => {}
             }
             brute_force_pairs(&colliders, &mut reference);
-            let aabb = |i: usize| (colliders[i].aabb_min, colliders[i].aabb_max);
-            let keep = |a: u32, b: u32| candidate(&colliders[a as usize], &colliders[b as usize]);
-            tree.pairs(colliders.len(), aabb, keep, &mut fast, usize::MAX);
-            fast.sort_unstable();
-            prop_assert!(!reference.is_empty());
+            prop_assert!(reference.len() > 10);
+            if step == 7 {
+                let (capped, full) = tree_pairs(&mut tree, &colliders, 10);
+                prop_assert!(full && capped.len() == 10, "step {}: the cap", step);
+                prop_assert!(capped.iter().all(|p| reference.contains(p)));
+            }
+            let (fast, full) = tree_pairs(&mut tree, &colliders, usize::MAX);
+            prop_assert!(!full);
             prop_assert_eq!(&reference, &fast, "step {}", step);
         }
     }
