@@ -136,9 +136,26 @@ impl AwakeTree {
         cap: usize,
     ) -> bool {
         pairs.clear();
-        self.kept.leaves.clear();
-        self.kept.leaves.extend((0..n).map(leaf));
-        if self.kept.crowded {
+        let kept = &mut self.kept;
+        kept.leaves.clear();
+        kept.leaves.extend((0..n).map(leaf));
+        kept.moved.clear();
+        if n != self.leaves {
+            kept.valid = false;
+            kept.enlarged.clear();
+            kept.enlarged.extend(kept.leaves.iter().map(Leaf::enlarged));
+            kept.moved.extend(0..n as u32);
+        } else {
+            for (i, (l, e)) in kept.leaves.iter().zip(&mut kept.enlarged).enumerate() {
+                if !l.inside(e) {
+                    *e = l.enlarged();
+                    kept.moved.push(i as u32);
+                }
+            }
+        }
+        // When many leave their boxes (bouncing balls, or colliders that came or went),
+        // the candidates would only add a filter to the traversal.
+        if kept.crowded || kept.moved.len() * REQUERY_SHARE > n {
             return self.pairs_directly(pairs, cap);
         }
         if !self.update_candidates(cap) {
@@ -157,41 +174,30 @@ impl AwakeTree {
         false
     }
 
-    /// Brings the enlarged boxes and the candidates up to this step's leaves. Returns
-    /// false when the candidates passed `cap` (then the tree holds no valid state).
+    /// Brings the tree and the candidates up to this step's enlarged boxes (the tree has
+    /// `n` leaves, and few moved). Returns false when the candidates passed `cap` (then
+    /// the tree holds no valid state).
     fn update_candidates(&mut self, cap: usize) -> bool {
         let n = self.kept.leaves.len();
-        let fresh = n != self.leaves || !self.kept.valid;
-        let kept = &mut self.kept;
+        let fresh = !self.kept.valid;
         if fresh {
-            kept.enlarged.clear();
-            kept.enlarged.extend(kept.leaves.iter().map(Leaf::enlarged));
-            let enlarged = std::mem::take(&mut kept.enlarged);
-            let refit = n == self.leaves;
+            let enlarged = std::mem::take(&mut self.kept.enlarged);
             self.place(n, |i| enlarged[i]);
             self.kept.enlarged = enlarged;
-            if refit && n >= OPTIMIZE_FROM {
-                self.bvh.optimize_incremental(&mut self.workspace);
-            }
+        } else if self.kept.moved.is_empty() {
+            return true;
         } else {
-            kept.moved.clear();
-            for (i, (l, e)) in kept.leaves.iter().zip(&mut kept.enlarged).enumerate() {
-                if !l.inside(e) {
-                    *e = l.enlarged();
-                    kept.moved.push(i as u32);
-                    self.bvh.insert_or_update_partially(*e, i as u32, 0.0);
-                }
-            }
-            if kept.moved.is_empty() {
-                return true;
+            for &i in &self.kept.moved {
+                let e = self.kept.enlarged[i as usize];
+                self.bvh.insert_or_update_partially(e, i, 0.0);
             }
             self.bvh.refit(&mut self.workspace);
-            if n >= OPTIMIZE_FROM {
-                self.bvh.optimize_incremental(&mut self.workspace);
-            }
+        }
+        if n >= OPTIMIZE_FROM {
+            self.bvh.optimize_incremental(&mut self.workspace);
         }
         self.kept.valid = false;
-        let found = if fresh || self.kept.moved.len() * REQUERY_SHARE > n {
+        let found = if fresh {
             self.all_candidates(cap)
         } else {
             self.requery_moved(cap)
