@@ -1,7 +1,10 @@
-//! Our broad phase (sweep and prune, insertion-sorted from last step's order) against
-//! parry3d's BVH (leaves updated and the tree refitted each step, as rapier does, then a
-//! self-traversal) on the peers' scenes' boxes over 60 steps of motion: µs per step,
-//! median of interleaved rounds (release, one thread). Both must find the same pairs.
+//! The step's broad phase tree (parry3d's BVH over boxes enlarged past the swept ones,
+//! with the pairs of overlapping enlarged boxes kept from step to step: see
+//! `world/awake_tree.rs`) against the sweep and prune it replaced (insertion-sorted from
+//! last step's order) and parry3d's BVH as rapier uses it (leaves updated and the tree
+//! refitted each step, then a self-traversal), on boxes like the peers' scenes' over 60
+//! steps of motion: µs per step, median of interleaved rounds (release, one thread). All
+//! three must find the same pairs.
 //!
 //! `cargo bench --features bench-internals --bench broad_phase`
 
@@ -10,7 +13,7 @@ use std::time::Instant;
 use bevy::prelude::*;
 use parry3d::bounding_volume::Aabb;
 use parry3d::partitioning::{Bvh, BvhBuildStrategy, BvhWorkspace};
-use tumble::bench_api::{Rnd, SweepAndPrune};
+use tumble::bench_api::{BroadPhaseTree, Rnd, SweepAndPrune};
 
 const STEPS: usize = 60;
 const ROUNDS: usize = 9;
@@ -83,7 +86,38 @@ fn pyramid() -> Scene {
     }
 }
 
-fn ours(s: &Scene) -> (f64, usize) {
+/// 10,000 balls of 1 m touching on a 1 m grid (22 × 22 × 21) at rest, every one
+/// trembling by 0.1 mm (the ball pit scaled up, settled).
+fn ball_pile() -> Scene {
+    let start: Vec<Vec3> = (0..10_000)
+        .map(|i| {
+            let (x, y, z) = (i % 22, (i / 22) % 22, i / 484);
+            Vec3::new(x as f32, y as f32, z as f32)
+        })
+        .collect();
+    let mut rnd = Rnd(9);
+    let frames = (0..STEPS)
+        .map(|_| start.iter().map(|&p| p + rnd.vec(-1e-4, 1e-4)).collect())
+        .collect();
+    Scene {
+        name: "ball pile (10,000)",
+        frames,
+        half: Vec3::splat(0.52),
+    }
+}
+
+fn tree(s: &Scene) -> (f64, usize) {
+    let mut tree = BroadPhaseTree::default();
+    let all: Vec<_> = (0..STEPS).map(|k| boxes(s, k)).collect();
+    let t = Instant::now();
+    let mut pairs = 0;
+    for b in &all {
+        pairs += tree.pairs(b).len();
+    }
+    (t.elapsed().as_secs_f64() * 1e6 / STEPS as f64, pairs)
+}
+
+fn sap(s: &Scene) -> (f64, usize) {
     let mut sap = SweepAndPrune::default();
     let all: Vec<_> = (0..STEPS).map(|k| boxes(s, k)).collect();
     let t = Instant::now();
@@ -123,24 +157,39 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 fn main() {
-    println!("| scene | ours µs/step | parry BVH µs/step | parry / ours | pairs (ours, parry) |");
-    println!("|---|---:|---:|---:|---|");
-    for s in [rain(), pyramid()] {
-        let (mut a, mut b) = (vec![], vec![]);
-        let (mut pa, mut pb) = (0, 0);
+    println!(
+        "| scene | step's tree µs/step | sweep and prune | parry BVH | SAP / tree | parry / tree | pairs |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|");
+    for s in [rain(), pyramid(), ball_pile()] {
+        let (mut t, mut a, mut b) = (vec![], vec![], vec![]);
+        let mut found = [0; 3];
         for _ in 0..ROUNDS {
-            let (t, p) = ours(&s);
-            a.push(t);
-            pa = p;
-            let (t, p) = parry(&s);
-            b.push(t);
-            pb = p;
+            for (k, (run, times)) in [
+                (tree as fn(&Scene) -> (f64, usize), &mut t),
+                (sap, &mut a),
+                (parry, &mut b),
+            ]
+            .into_iter()
+            .enumerate()
+            {
+                let (ms, p) = run(&s);
+                times.push(ms);
+                found[k] = p;
+            }
         }
-        let (o, p) = (median(a), median(b));
+        assert!(
+            found.iter().all(|&p| p == found[0]),
+            "{}: {found:?} pairs",
+            s.name
+        );
+        let (t, o, p) = (median(t), median(a), median(b));
         println!(
-            "| {} | {o:.1} | {p:.1} | {:.2} | {pa}, {pb} |",
+            "| {} | {t:.1} | {o:.1} | {p:.1} | {:.2} | {:.2} | {} |",
             s.name,
-            p / o
+            o / t,
+            p / t,
+            found[0]
         );
     }
 }

@@ -217,3 +217,27 @@ impl ContactPass {
         self.pack();
     }
 }
+
+/// The step's broad phase tree ([`AwakeTree`](crate::world::AwakeTree)), kept between
+/// calls as in the step: enlarged boxes and the candidate pairs they overlap carried
+/// from call to call.
+#[derive(Default)]
+pub struct BroadPhaseTree {
+    tree: crate::world::AwakeTree,
+    pairs: Vec<(u32, u32)>,
+}
+
+impl BroadPhaseTree {
+    /// The overlapping pairs among `boxes` (min, max), each a body of its own, in no
+    /// particular order.
+    pub fn pairs(&mut self, boxes: &[(Vec3, Vec3)]) -> &[(u32, u32)] {
+        let leaf = |i: usize| crate::world::Leaf {
+            lo: boxes[i].0,
+            hi: boxes[i].1,
+            body: i as u32,
+        };
+        self.tree
+            .pairs(boxes.len(), leaf, &mut self.pairs, usize::MAX);
+        &self.pairs
+    }
+}
