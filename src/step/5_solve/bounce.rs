@@ -1,9 +1,8 @@
 //! Restitution over a step's contacts where they are solved: the batches' contacts side
 //! by side in their lanes, the scalar ones one at a time, in pass order. Each lane does
 //! what [`apply_restitution`] does for one contact, point by point, in the same order,
-//! and the pass order keeps each body's contacts in contact order (see
-//! [`ContactBatches`]), so the result is the bits of `apply_restitution` over every
-//! constraint. The batched contacts then need not be written out as constraints when a
+//! so the result is the bits of `apply_restitution` over every constraint in pass order
+//! (contact order where levels are wide, see [`ContactBatches`]). The batched contacts then need not be written out as constraints when a
 //! step bounces (rain wrote, reread and stored 5,500 of them a step for this alone).
 
 #[cfg(target_arch = "x86_64")]
