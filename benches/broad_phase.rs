@@ -106,26 +106,23 @@ fn ball_pile() -> Scene {
     }
 }
 
-fn tree(s: &Scene) -> (f64, usize) {
-    let mut tree = BroadPhaseTree::default();
+/// µs a step and pairs found over the scene's steps, by `pairs` (the boxes of each step
+/// made beforehand).
+fn timed(s: &Scene, mut pairs: impl FnMut(&[(Vec3, Vec3)]) -> usize) -> (f64, usize) {
     let all: Vec<_> = (0..STEPS).map(|k| boxes(s, k)).collect();
     let t = Instant::now();
-    let mut pairs = 0;
-    for b in &all {
-        pairs += tree.pairs(b).len();
-    }
-    (t.elapsed().as_secs_f64() * 1e6 / STEPS as f64, pairs)
+    let found = all.iter().map(|b| pairs(b)).sum();
+    (t.elapsed().as_secs_f64() * 1e6 / STEPS as f64, found)
+}
+
+fn tree(s: &Scene) -> (f64, usize) {
+    let mut tree = BroadPhaseTree::default();
+    timed(s, |b| tree.pairs(b).len())
 }
 
 fn sap(s: &Scene) -> (f64, usize) {
     let mut sap = SweepAndPrune::default();
-    let all: Vec<_> = (0..STEPS).map(|k| boxes(s, k)).collect();
-    let t = Instant::now();
-    let mut pairs = 0;
-    for b in &all {
-        pairs += sap.pairs(b).len();
-    }
-    (t.elapsed().as_secs_f64() * 1e6 / STEPS as f64, pairs)
+    timed(s, |b| sap.pairs(b).len())
 }
 
 fn parry(s: &Scene) -> (f64, usize) {

@@ -139,22 +139,21 @@ impl AwakeTree {
         let kept = &mut self.kept;
         kept.leaves.clear();
         kept.leaves.extend((0..n).map(leaf));
-        kept.moved.clear();
         if n != self.leaves {
-            kept.valid = false;
+            // Colliders came or went: leaf i is another collider than last step.
             kept.enlarged.clear();
             kept.enlarged.extend(kept.leaves.iter().map(Leaf::enlarged));
-            kept.moved.extend(0..n as u32);
-        } else {
-            for (i, (l, e)) in kept.leaves.iter().zip(&mut kept.enlarged).enumerate() {
-                if !l.inside(e) {
-                    *e = l.enlarged();
-                    kept.moved.push(i as u32);
-                }
+            return self.pairs_directly(pairs, cap);
+        }
+        kept.moved.clear();
+        for (i, (l, e)) in kept.leaves.iter().zip(&mut kept.enlarged).enumerate() {
+            if !l.inside(e) {
+                *e = l.enlarged();
+                kept.moved.push(i as u32);
             }
         }
-        // When many leave their boxes (bouncing balls, or colliders that came or went),
-        // the candidates would only add a filter to the traversal.
+        // When many leave their boxes (bouncing balls), the candidates would only add a
+        // filter to the traversal.
         if kept.crowded || kept.moved.len() * REQUERY_SHARE > n {
             return self.pairs_directly(pairs, cap);
         }

@@ -80,7 +80,7 @@ pub(crate) struct ContactBatches {
     order: Vec<u32>,
     /// Per body: the colours its contacts took in the run being coloured (scratch).
     used: Vec<u64>,
-    /// A run's contacts with their colours, then one group's contacts (scratch).
+    /// A run's contacts with their colours, and one colour's contacts (scratch).
     coloured: Vec<(u8, u32)>,
     group: Vec<u32>,
     /// The scalar contacts in manifold order, the order they are built in (scratch;
@@ -301,39 +301,39 @@ impl ContactBatches {
         }
         self.start.copy_within(0..levels, 1);
         self.start[0] = 0;
+        // Levels are emitted as slices of `order` (it and `start` are taken out while
+        // `emit` adds to the other lists, and put back).
+        let (order, start) = (
+            std::mem::take(&mut self.order),
+            std::mem::take(&mut self.start),
+        );
+        let level = |m: usize| &order[start[m] as usize..start[m + 1] as usize];
+        let batchable = |contacts: &[u32]| {
+            contacts
+                .iter()
+                .filter(|&&c| !keys[c as usize].scalar)
+                .count()
+        };
         let mut l = 0;
         while l < levels {
-            // A run of narrow levels (a chain, a tower: one contact a level) is coloured.
-            let end = (l..levels)
-                .find(|&m| self.batchable(keys, m) >= MIN_LANES)
-                .unwrap_or(levels);
-            let run = self.start[l] as usize..self.start[end] as usize;
-            let batchable = self.order[run.clone()].iter();
-            if batchable.filter(|&&c| !keys[c as usize].scalar).count() >= COLOUR_FROM {
-                self.colour(keys, run);
-                l = end;
+            if batchable(level(l)) >= MIN_LANES {
+                self.emit(keys, level(l));
+                l += 1;
                 continue;
             }
-            for m in l..end.max(l + 1) {
-                let mut group = std::mem::take(&mut self.group);
-                group.clear();
-                group.extend_from_slice(
-                    &self.order[self.start[m] as usize..self.start[m + 1] as usize],
-                );
-                self.emit(keys, &group);
-                self.group = group;
+            // A run of narrow levels (a chain, a tower: one contact a level).
+            let end = (l..levels)
+                .find(|&m| batchable(level(m)) >= MIN_LANES)
+                .unwrap_or(levels);
+            let run = &order[start[l] as usize..start[end] as usize];
+            if batchable(run) >= COLOUR_FROM {
+                self.colour(keys, run);
+            } else {
+                (l..end).for_each(|m| self.emit(keys, level(m)));
             }
-            l = end.max(l + 1);
+            l = end;
         }
-    }
-
-    /// The contacts of level `l` that can go in a batch.
-    fn batchable(&self, keys: &[ContactKey], l: usize) -> usize {
-        let contacts = &self.order[self.start[l] as usize..self.start[l + 1] as usize];
-        contacts
-            .iter()
-            .filter(|&&c| !keys[c as usize].scalar)
-            .count()
+        (self.order, self.start) = (order, start);
     }
 
     /// Colours a run of narrow levels (`order[run]`): each contact, in level order, takes
@@ -343,15 +343,11 @@ impl ContactBatches {
     /// red–black order rather than bottom to top (the same Gauss–Seidel fixed point; for
     /// a chain, the same rate of convergence), and the result is no longer the bits of
     /// the scalar pass in contact order, but of the scalar pass in pass order.
-    fn colour(&mut self, keys: &[ContactKey], run: Range<usize>) {
+    fn colour(&mut self, keys: &[ContactKey], run: &[u32]) {
         let mut coloured = std::mem::take(&mut self.coloured);
         coloured.clear();
-        for &c in &self.order[run.clone()] {
-            let k = &keys[c as usize];
-            if k.scalar {
-                continue;
-            }
-            let sides = moved_sides(k);
+        for &c in run.iter().filter(|&&c| !keys[c as usize].scalar) {
+            let sides = moved_sides(&keys[c as usize]);
             let taken = sides.iter().flatten().fold(0u64, |m, &i| m | self.used[i]);
             let colour = (!taken).trailing_zeros();
             if colour >= MAX_COLOURS {
@@ -364,14 +360,15 @@ impl ContactBatches {
                 .for_each(|&i| self.used[i] |= 1 << colour);
             coloured.push((colour as u8, c));
         }
-        for &c in &self.order[run.clone()] {
+        for &c in run {
             moved_sides(&keys[c as usize])
                 .iter()
                 .flatten()
                 .for_each(|&i| self.used[i] = 0);
         }
-        // Stable: each colour keeps level order.
-        coloured.sort_by_key(|&(colour, _)| colour);
+        // By colour, then contact (a colour's contacts share no moved body, so their
+        // order within it is free; this one is fixed and sorts in place).
+        coloured.sort_unstable();
         let mut group = std::mem::take(&mut self.group);
         for same in coloured.chunk_by(|x, y| x.0 == y.0) {
             group.clear();
@@ -382,12 +379,11 @@ impl ContactBatches {
                 self.emit(keys, &group);
             }
         }
-        group.clear();
-        let scalar = self.order[run].iter().filter(|&&c| keys[c as usize].scalar);
-        group.extend(scalar);
-        self.scalar_steps(&group);
         self.group = group;
         self.coloured = coloured;
+        for &c in run.iter().filter(|&&c| keys[c as usize].scalar) {
+            self.scalar_steps(&[c]);
+        }
     }
 
     /// Contacts that share no moved body (a level, or a colour), in order: cut into
@@ -400,26 +396,14 @@ impl ContactBatches {
             lanes[n] = c;
             n += 1;
             if n == LANES {
-                let batch = ContactBatch::empty(
-                    keys,
-                    lanes,
-                    (&mut self.points, &mut self.anchors),
-                    &mut self.friction,
-                );
-                self.batches.push(batch);
+                self.push_batch(keys, lanes);
                 (lanes, n) = ([NO_CONTACT; LANES], 0);
             }
         }
         // A batch of few lanes costs about what a full one does: its contacts go to
         // the scalar pass.
         let lone = if n >= MIN_LANES {
-            let batch = ContactBatch::empty(
-                keys,
-                lanes,
-                (&mut self.points, &mut self.anchors),
-                &mut self.friction,
-            );
-            self.batches.push(batch);
+            self.push_batch(keys, lanes);
             0
         } else {
             n
@@ -429,11 +413,16 @@ impl ContactBatches {
                 .push(SolveStep::Batches(first..self.batches.len()));
         }
         self.scalar_steps(&lanes[..lone]);
-        let scalar = contacts.iter().filter(|&&c| keys[c as usize].scalar);
-        for &c in scalar {
-            self.scalar.push(c);
-            self.steps.push(SolveStep::Scalar(c));
+        for &c in contacts.iter().filter(|&&c| keys[c as usize].scalar) {
+            self.scalar_steps(&[c]);
         }
+    }
+
+    /// A batch of `lanes`, whose lanes are left to fill.
+    fn push_batch(&mut self, keys: &[ContactKey], lanes: [u32; LANES]) {
+        let lists = (&mut self.points, &mut self.anchors);
+        let batch = ContactBatch::empty(keys, lanes, lists, &mut self.friction);
+        self.batches.push(batch);
     }
 
     fn scalar_steps(&mut self, contacts: &[u32]) {

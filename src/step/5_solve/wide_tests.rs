@@ -166,79 +166,95 @@ fn batched_passes_compute_the_scalar_passes_bit_for_bit() {
 fn batched_passes_match_scalar() {
     const BODIES: usize = 160;
     const CONTACTS: usize = 400;
-    const FIXED: u32 = 60;
+    const FIXED: usize = 60;
     let mut r = Rnd(0x5eed_0017);
-    let h = 1.0 / 240.0;
     let mut lanes_used = (0, 0);
     for round in 0..40 {
         // Enough bodies that a level holds several batches of eight disjoint contacts.
         let bodies: Vec<SolverBody> = (0..BODIES).map(|_| random_body(&mut r)).collect();
-        let fixed = FIXED as usize;
-        let mut scalar_constraints: Vec<ContactConstraint> = (0..CONTACTS)
-            .map(|i| random_contact(&mut r, &bodies, i < fixed))
+        let constraints: Vec<ContactConstraint> = (0..CONTACTS)
+            .map(|i| random_contact(&mut r, &bodies, i < FIXED))
             .collect();
-        let mut constraints = scalar_constraints.clone();
-        let mut batches = ContactBatches::default();
-        batches.build(&constraints, &bodies, fixed);
-        let keys: Vec<_> = constraints
-            .iter()
-            .map(|c| ContactKey::of(c, &bodies))
-            .collect();
-        assert!(batches.is_valid(&keys, &bodies));
-        let lanes = batches.batches.iter().flat_map(|b| b.contact);
-        lanes_used.0 += lanes.filter(|&c| c != NO_CONTACT).count();
-        lanes_used.1 += LANES * batches.batches.len();
-        let (steps, fixed_steps) = (batches.steps.len(), batches.fixed_steps);
-        let (all, fixed_list) = (
-            pass_order(&batches, 0..steps),
-            pass_order(&batches, 0..fixed_steps),
-        );
-
-        let (mut lanes, mut scalar) = (bodies.clone(), bodies.clone());
-        warm_start_steps(&mut lanes, &constraints, &batches, 0..steps);
-        warm_start_listed(&mut scalar, &scalar_constraints, &all);
-        assert_same(&lanes, &scalar, &format!("round {round}: warm start"));
-
-        for (pass, use_bias) in [true, false, true].into_iter().enumerate() {
-            // The scalar pass measures the separations every time; the batched one only
-            // in the first (nothing moves the bodies between passes here).
-            let lists = [
-                (0..steps, &all, pass == 0),
-                (0..fixed_steps, &fixed_list, false),
-            ];
-            for (range, list, measure) in lists {
-                let c = &mut constraints;
-                let kind = Pass {
-                    h,
-                    use_bias,
-                    measure,
-                };
-                solve_steps(&mut lanes, c, &mut batches, range, &[], kind);
-                let flags = (use_bias, true);
-                solve_listed(&mut scalar, &mut scalar_constraints, list, &[], h, flags);
-            }
-            assert_same(&lanes, &scalar, &format!("round {round}, pass {pass}"));
-        }
-        batches.write_back(0..batches.batches.len(), &mut constraints);
-        for (i, (x, y)) in constraints.iter().zip(&scalar_constraints).enumerate() {
-            for (p, q) in x.points[..x.len].iter().zip(&y.points) {
-                assert!(
-                    p.normal_impulse == q.normal_impulse
-                        && p.max_normal_impulse == q.max_normal_impulse
-                        && p.relative_velocity == q.relative_velocity,
-                    "round {round}: contact {i}: {p:?} against {q:?}"
-                );
-            }
-            let (f, g) = (&x.anchor, &y.anchor);
-            assert!(
-                f.tangent_impulse == g.tangent_impulse && f.twist_impulse == g.twist_impulse,
-                "round {round}: contact {i}: {f:?} against {g:?}"
-            );
-        }
+        let used = passes_match_scalar(&bodies, constraints, FIXED, &format!("round {round}"));
+        lanes_used = (lanes_used.0 + used.0, lanes_used.1 + used.1);
     }
     // The test means something only if the lanes are mostly full.
     let fill = lanes_used.0 as f32 / lanes_used.1 as f32;
     assert!(fill > 0.6, "lanes {:.0} % full", 100.0 * fill);
+}
+
+/// Packs `scalar_constraints` (the first `fixed` with fixed colliders) into batches and
+/// runs a warm start and three passes batched and, over the same contacts in pass
+/// order, one at a time: every velocity and impulse must agree bit for bit. Returns the
+/// lanes used and the lanes there were.
+fn passes_match_scalar(
+    bodies: &[SolverBody],
+    mut scalar_constraints: Vec<ContactConstraint>,
+    fixed: usize,
+    what: &str,
+) -> (usize, usize) {
+    let h = 1.0 / 240.0;
+    let mut constraints = scalar_constraints.clone();
+    let mut batches = ContactBatches::default();
+    batches.build(&constraints, bodies, fixed);
+    let keys: Vec<_> = constraints
+        .iter()
+        .map(|c| ContactKey::of(c, bodies))
+        .collect();
+    assert!(batches.is_valid(&keys, bodies));
+    let lanes = batches.batches.iter().flat_map(|b| b.contact);
+    let used = (
+        lanes.filter(|&c| c != NO_CONTACT).count(),
+        LANES * batches.batches.len(),
+    );
+    let (steps, fixed_steps) = (batches.steps.len(), batches.fixed_steps);
+    let (all, fixed_list) = (
+        pass_order(&batches, 0..steps),
+        pass_order(&batches, 0..fixed_steps),
+    );
+
+    let (mut lanes, mut scalar) = (bodies.to_vec(), bodies.to_vec());
+    warm_start_steps(&mut lanes, &constraints, &batches, 0..steps);
+    warm_start_listed(&mut scalar, &scalar_constraints, &all);
+    assert_same(&lanes, &scalar, &format!("{what}: warm start"));
+
+    for (pass, use_bias) in [true, false, true].into_iter().enumerate() {
+        // The scalar pass measures the separations every time; the batched one only
+        // in the first (nothing moves the bodies between passes here).
+        let lists = [
+            (0..steps, &all, pass == 0),
+            (0..fixed_steps, &fixed_list, false),
+        ];
+        for (range, list, measure) in lists {
+            let c = &mut constraints;
+            let kind = Pass {
+                h,
+                use_bias,
+                measure,
+            };
+            solve_steps(&mut lanes, c, &mut batches, range, &[], kind);
+            let flags = (use_bias, true);
+            solve_listed(&mut scalar, &mut scalar_constraints, list, &[], h, flags);
+        }
+        assert_same(&lanes, &scalar, &format!("{what}, pass {pass}"));
+    }
+    batches.write_back(0..batches.batches.len(), &mut constraints);
+    for (i, (x, y)) in constraints.iter().zip(&scalar_constraints).enumerate() {
+        for (p, q) in x.points[..x.len].iter().zip(&y.points) {
+            assert!(
+                p.normal_impulse == q.normal_impulse
+                    && p.max_normal_impulse == q.max_normal_impulse
+                    && p.relative_velocity == q.relative_velocity,
+                "{what}: contact {i}: {p:?} against {q:?}"
+            );
+        }
+        let (f, g) = (&x.anchor, &y.anchor);
+        assert!(
+            f.tangent_impulse == g.tangent_impulse && f.twist_impulse == g.twist_impulse,
+            "{what}: contact {i}: {f:?} against {g:?}"
+        );
+    }
+    used
 }
 
 /// The couplings against what they stand for: a unit normal impulse at point k, applied
@@ -335,30 +351,38 @@ fn batched_restitution_matches_scalar() {
 /// A tower's contacts (a chain: body i on body i − 1, the bottom one on the ground) make
 /// one level each, too narrow for a batch; the run is coloured instead: the ground
 /// contact alone (the fixed part), then every other link side by side, then the rest.
+/// The two colours in their lanes compute the scalar pass's bits in that order, in each
+/// compiled copy.
 #[test]
 fn a_chain_is_solved_in_two_colours() {
     let mut r = Rnd(0x5eed_00c4);
     let n = 12;
-    // Every one dynamic (random bodies include fixed ones, which would cut the chain).
+    // Every one dynamic (random bodies include fixed ones, which would cut the chain)
+    // and round (a turning anisotropic body's contacts take the scalar pass).
     let dynamic = |mut b: SolverBody| {
         b.inv_mass = 1.0;
+        b.inv_inertia = Mat3::from_diagonal(Vec3::splat(6.0));
         b
     };
     let bodies: Vec<SolverBody> = (0..n).map(|_| dynamic(random_body(&mut r))).collect();
-    let ground = body(&bodies, STATIC);
-    let mut keys = vec![ContactKey::new(
-        (STATIC, 0),
-        [&ground, &bodies[0]],
-        false,
-        4,
-    )];
-    for i in 1..n as u32 {
-        let sides = [&bodies[i as usize - 1], &bodies[i as usize]];
-        keys.push(ContactKey::new((i - 1, i), sides, false, 4));
-    }
+    // Each contact drawn between its two bodies alone (indices 0 and 1 of `pair`), then
+    // put on their places in the chain: `on` is the lower body, or None for the ground.
+    let mut link = |on: Option<u32>, top: u32| {
+        let lower = on.map_or(bodies[top as usize], |i| bodies[i as usize]);
+        let pair = [lower, bodies[top as usize]];
+        let mut c = random_contact(&mut r, &pair, on.is_none());
+        let place = |i: u32| match i {
+            STATIC => STATIC,
+            0 => on.unwrap_or(top),
+            _ => top,
+        };
+        (c.a, c.b) = (place(c.a), place(c.b));
+        c
+    };
+    let mut constraints = vec![link(None, 0)];
+    constraints.extend((1..n as u32).map(|i| link(Some(i - 1), i)));
     let mut batches = ContactBatches::default();
-    batches.pack_keyed(&keys, &bodies, 1);
-    assert!(batches.is_valid(&keys, &bodies));
+    batches.build(&constraints, &bodies, 1);
     let lanes = |b: usize| -> Vec<u32> {
         let lanes = batches.batches[b].contact.into_iter();
         lanes.filter(|&c| c != NO_CONTACT).collect()
@@ -373,4 +397,7 @@ fn a_chain_is_solved_in_two_colours() {
     );
     assert_eq!(lanes(0), [1, 3, 5, 7, 9, 11]);
     assert_eq!(lanes(1), [2, 4, 6, 8, 10]);
+    crate::math::lanes::in_each_copy(|| {
+        passes_match_scalar(&bodies, constraints.clone(), 1, "chain");
+    });
 }
