@@ -155,8 +155,8 @@ fn main() {
         effect_cases(&free, Effects::FREE_FLIGHT)
     });
 
-    // Gather and writeback at 10,000 bodies (the performance issue's kernel): in free
-    // flight prepare and writeback are nearly the whole step.
+    // Gather and writeback at 10,000 bodies: in free flight prepare and writeback are
+    // nearly the whole step, so this times their per-body cost at scale.
     let mut many = free.clone();
     if let tumble::scene::BodyGroup::Pile { count, .. } = &mut many.bodies[0] {
         *count = 10_000;

@@ -23,8 +23,9 @@
 //! The crate restores the true pose before every fixed step by writing `Transform`, which
 //! marks it changed even when the value is the same. tumble therefore takes a changed
 //! `Transform` of a sleeping or static body for a move only when the pose differs
-//! (measured before that fix: a ball at rest under interpolation slept in 14 of 240
-//! steps, woken by every restore; after it, 211, as without interpolation).
+//! (measured: taking every changed `Transform` for a move, a ball at rest under
+//! interpolation slept in 14 of 240 steps, woken by every restore; comparing the pose,
+//! 211, as without interpolation).
 
 use bevy::ecs::query::QueryData;
 use bevy::prelude::*;

@@ -149,6 +149,7 @@ impl Plugin for TumblePlugin {
                     prepare::validate_settings,
                     prepare::readmit_rejected,
                     prepare::sync_fixed_set,
+                    prepare::wake_reached_sleepers,
                     prepare::prepare_bodies,
                     prepare::prepare_joints,
                     prepare::clear_impulses,

@@ -78,8 +78,8 @@ fn a_light_box_hit_toward_a_wall_stops_at_it() {
 /// (measured 5.7 mm at the face's centre, which a slight tilt puts past the slop that
 /// bounds the deepest corner); asserted: less than the margin, which the 0.22 m broke.
 /// Where the squeeze leaves it after is the soft contact's: 11 mm at 1, 2 and 4
-/// substeps, 13–22 mm at 8 and 24–28 mm at 16 (a finding, not asserted here: see the
-/// README's session 17 notes).
+/// substeps, 13–22 mm at 8 and 24–28 mm at 16 (printed below, not asserted: a limit of
+/// the soft contact, not of the sweep).
 #[test]
 fn a_light_box_hit_toward_a_wall_stops_at_it_at_any_substeps() {
     let margin = SolverSettings::default().speculative_margin;

@@ -105,11 +105,11 @@ fn fast_box_lands_on_the_ground_instead_of_falling_through() {
     assert!((0.25 - give..=0.25).contains(&y), "box at y = {y}");
 }
 
-/// With restitution 0 a box that lands flat stops where it lands. It used to come back up
-/// at 2.6 m/s, tumbling, and slide off at 4 m/s: one Gauss–Seidel sweep over the four
-/// corner rows of an impact leaves their impulses lopsided (the rows are coupled through
-/// the box), and the warm-started excess threw it back up. The solver now sweeps a
-/// manifold's normal rows again until they settle (at most 4 times).
+/// With restitution 0 a box that lands flat stops where it lands. One Gauss–Seidel sweep
+/// over the four corner rows of an impact leaves their impulses lopsided (the rows are
+/// coupled through the box), and the warm-started excess throws it back up (at 2.6 m/s,
+/// tumbling, to slide off at 4 m/s). So the solver sweeps a manifold's normal rows again
+/// until they settle (at most 4 times).
 #[test]
 fn fast_box_landing_flat_stops_dead() {
     let mut app = app();

@@ -1,14 +1,14 @@
 //! The joints' mass-ratio hard case: a hanging chain of 30 light links (0.1 kg) with a
 //! ball a hundred times heavier (10 kg) at its end. Solved joint by joint (Gauss–Seidel)
-//! with soft rows, each joint was a spring across two light links carrying the ball's
-//! weight and the passes never carried the load up the chain: it stretched 14.5 % at 4
-//! substeps (11 % at 16 passes), and held under 1 % only once a sag rule raised the
-//! substeps to 16. Now the joints' equality rows are solved together and exactly
+//! with soft rows, each joint is a spring across two light links carrying the ball's
+//! weight and the passes never carry the load up the chain: it stretches 14.5 % at 4
+//! substeps (11 % at 16 passes), and holds under 1 % only once a sag rule raises the
+//! substeps to 16. So the joints' equality rows are solved together and exactly
 //! (`joint_direct.rs`): the chain must stretch less than 1 % at a true 4 substeps.
 //!
 //! Let go from the horizontal, the same chain whips the ball down and its taut links
-//! ring fast (a 560 N pull on 0.1 kg links): at 4 substeps that ringing outran the solve
-//! and the chain came apart; the substeps follow it (`tension_omega`) and every joint
+//! ring fast (a 560 N pull on 0.1 kg links): at 4 substeps that ringing outruns the solve
+//! and the chain comes apart; so the substeps follow it (`tension_omega`) and every joint
 //! must stay closed within 1 cm.
 
 mod common;

@@ -108,8 +108,8 @@ fn a_ball_on_a_ball_joint_swings_as_a_physical_pendulum() {
 fn more_substeps_never_cost_a_pendulum_energy() {
     // 1 m from 60°, 20 s at 60 Hz: the swing energy's drift at 4, 16 and 64 substeps. The
     // joint stiffens with the substep rate (at half the contacts' cap): at a fixed 60 Hz
-    // its damping worked on the compliance it left, and the drift grew from −9.9e-5 at 16
-    // substeps to −8.0e-4 at 64.
+    // its damping would work on the compliance it leaves, and the drift grows from
+    // −9.9e-5 at 16 substeps to −8.0e-4 at 64.
     let drift = |substeps: u32| {
         let mut app = app();
         app.world_mut().resource_mut::<SolverSettings>().substeps = substeps;

@@ -4,17 +4,13 @@
 //!
 //! - In a closed box under gravity: every body stays finite, simulated and inside the
 //!   box, and the total energy never rises above its start plus what overlap push-out
-//!   may add. Two envelopes run in CI at a fixed seed: the issue's 50 m/s and 1:1000,
-//!   and a gentler 20 m/s and 1:100. Seeds 0–39 of both (`TUMBLE_PROPTEST_SEED`, 24
-//!   scenes each: 1,920 scenes) passed when this was written; at `cd75d80` 6 of those 80
-//!   runs fail on "inside", each a body of 1.5–2.4 m a few millimetres past the sag bound
-//!   below in a corner or on the floor: a heavier body closing on it sinks its wall
-//!   contact by about v·√(M/m)/ω, which no stiffness rule asks for yet (README,
-//!   session 16; open in the performance issue's note). Since the continuous sweep also
-//!   takes bodies a heavier one touches (session 17), 4 of the 80 fail, all at 1:1000
-//!   (seeds 0, 4, 33, 34; with the one-anchor friction of session 18, 0, 18, 33, 34).
-//!   The CI seed passes. The energy
-//!   allowance, stated: each body that starts
+//!   may add. Two envelopes run in CI at a fixed seed: the full 50 m/s and 1:1000, and a
+//!   gentler 20 m/s and 1:100. Over seeds 0–39 of both (`TUMBLE_PROPTEST_SEED`, 24
+//!   scenes each: 1,920 scenes) 4 of the 80 runs fail on "inside", all at 1:1000 (seeds
+//!   0, 18, 33, 34), each a body of 1.5–2.4 m a few millimetres past the sag bound below
+//!   in a corner or on the floor: a heavier body closing on it sinks its wall contact by
+//!   about v·√(M/m)/ω, which no stiffness rule asks for (a known limit, left open).
+//!   The CI seed passes. The energy allowance, stated: each body that starts
 //!   overlapping another may be given at most ½·m·v_push² of kinetic energy (v_push =
 //!   `max_push_out`, the cap the share rule keeps every push below) and lifted by at
 //!   most the largest size in the scene, m·g·d_max.
@@ -226,8 +222,8 @@ proptest! {
         check_closed_room(&specs, pacing, sleeping)?;
     }
 
-    /// The envelope the issue asks for: speeds to 50 m/s, masses 1:1000. Its failing
-    /// seeds became `regress_squeezed_box_restitution.rs` and `continuous.rs`.
+    /// The full envelope: speeds to 50 m/s, masses 1:1000. The failures it has found are
+    /// held as regressions in `regress_squeezed_box_restitution.rs` and `continuous.rs`.
     #[test]
     fn random_bodies_at_50_m_s_and_1000_to_1_stay_inside_and_gain_no_energy(
         specs in prop::collection::vec(body_spec(50.0, 3.0), 2..10),

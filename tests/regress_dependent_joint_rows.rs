@@ -103,7 +103,7 @@ fn the_taut_bridge_holds_a_crate_crossing_it() {
     }
     // No plank outruns the energy the push had put in by the end, all of it on one
     // 2 kg plank (a loose bound; the law above is the test). The fastest plank's speed
-    // is chaotic: 4.5-6.5 m/s over pushes of 294-306 N at the defaults (README), so a
+    // is chaotic (measured: 4.5-6.5 m/s over pushes of 294-306 N at the defaults), so a
     // fixed 5 m/s limit here passed by chance at 300 N.
     let work = push * (pos(&app, crate_body).x - x0);
     let plank_mass = app.world().get::<Mass>(bodies[0]).unwrap().0;

@@ -1,4 +1,4 @@
-//! Every shape collides with every other: the README's pair table, each cell run here.
+//! Every shape collides with every other: each cell of the shape-by-shape table runs here.
 //!
 //! Moving shapes (sphere, box, capsule, cylinder, cone, convex hull) meet each other head
 //! on in zero gravity: they must touch, never pass through or sink in more than 5 mm, and

@@ -1,7 +1,7 @@
 //! Overlap at spawn: hundreds of boxes spawned into one point (a spawn bug in a game, an
-//! editor paste) separate calmly. Before: every pair pushed at the full 3 m/s and, with
-//! coincident centres, all in the same direction, so the pile squeezed out into a line
-//! whose ends flew off at 73 m/s. Now a coincident pair pushes in a direction hashed from
+//! editor paste) separate calmly. Were every pair to push at the full 3 m/s and, with
+//! coincident centres, all in the same direction, the pile would squeeze out into a line
+//! whose ends fly off at 73 m/s. So a coincident pair pushes in a direction hashed from
 //! the pair, and each body's push-out is shared among its overlaps (the limit over k^0.6
 //! for k overlaps), so the pile swells like a ball below the push-out limit. Each test
 //! runs three spawn orders (other colliders spawned first shift every hashed direction).

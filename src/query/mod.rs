@@ -84,10 +84,13 @@ pub struct PointProjection {
 }
 
 /// Ray casts, shape casts and overlap queries against the colliders of the last step.
+/// A collider despawned or stripped of its [`Collider`] since that step is never
+/// returned, whatever the frame pacing: the index is the step's, the answer is now's.
 #[derive(SystemParam)]
-pub struct SpatialQuery<'w> {
+pub struct SpatialQuery<'w, 's> {
     world: Res<'w, PhysicsWorld>,
     cache: Res<'w, SpatialQueryCache>,
+    live: Query<'w, 's, (), With<Collider>>,
 }
 
 /// The farthest a ray or a cast reaches, m: `f32::MAX` and other huge limits are cut to
@@ -99,7 +102,7 @@ fn any(_: Entity) -> bool {
     true
 }
 
-impl SpatialQuery<'_> {
+impl SpatialQuery<'_, '_> {
     /// The first collider a ray from `origin` along `direction` hits within
     /// `max_distance` (m; `f32::MAX` for no limit: [`MAX_QUERY_DISTANCE`]). With `solid`, a ray starting inside
     /// a collider hits it at distance 0; without, it hits the inside of its boundary.
@@ -347,15 +350,21 @@ impl SpatialQuery<'_> {
         lo: Vec3,
         hi: Vec3,
         test: impl Fn(Vec3, Vec3) -> bool,
-        found: impl FnMut(Candidate<'a>),
+        mut found: impl FnMut(Candidate<'a>),
     ) {
         let world: &'a PhysicsWorld = &self.world;
+        // Gone since the step (despawned, or its collider removed): not there any more.
+        let mut found = |c: Candidate<'a>| {
+            if self.live.contains(c.entry.entity) {
+                found(c)
+            }
+        };
         #[cfg(test)]
         if self.cache.brute_force() {
-            return self.cache.with(world, |index| index.all(world, found));
+            return self.cache.with(world, |index| index.all(world, &mut found));
         }
         self.cache.with(world, |index| {
-            index.overlapping(world, (lo, hi), test, found)
+            index.overlapping(world, (lo, hi), test, &mut found)
         });
     }
 

@@ -53,8 +53,8 @@ pub(crate) struct ConstraintPoint {
 /// contact plane. Three rows a manifold instead of two a point (eight for a box face):
 /// the same sliding friction, μ·Σλn, and the twist limited to μ·Σ λn·arm, what the
 /// points' own friction would give against a pure turn about the centre. Solved as one
-/// anchor, it also has no order among the points: a corner solved first no longer twists
-/// the box before the next corner is.
+/// anchor, it also has no order among the points: no corner is solved first to twist the
+/// box before the next corner is.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct FrictionAnchor {
     /// The anchor from each body's centre, world frame, start of step, m.
@@ -332,7 +332,7 @@ impl Anchoring {
     }
 
     /// [`anchors`](Self::anchors) of a contact known to have no rolling motion. (The
-    /// passes no longer turn anchors: they measure with [`normal_images`](Self::normal_images).)
+    /// passes do not turn anchors: they measure with [`normal_images`](Self::normal_images).)
     #[inline(always)]
     fn plain_anchors(&self, p: &ConstraintPoint, a: &SolverBody, b: &SolverBody) -> (Vec3, Vec3) {
         let ca = if self.turn[0] { a.dq * p.ra } else { p.ra };

@@ -63,6 +63,9 @@ pub(crate) struct FixedSet {
     normals: Vec<Vec3>,
     /// The parts of sleeping compound bodies, by body: they leave with it.
     parts: HashMap<Entity, Vec<Entity>>,
+    /// How many entries are sleeping bodies (or their parts): a scene without any skips
+    /// the search for sleepers an awake body is about to reach.
+    asleep: usize,
 }
 
 impl FixedSet {
@@ -82,6 +85,21 @@ impl FixedSet {
         self.slots.contains_key(&entity)
     }
 
+    /// Whether any entry is a sleeping body (or a part of one).
+    pub fn has_sleepers(&self) -> bool {
+        self.asleep > 0
+    }
+
+    /// The bounds of a sleeping body's entries: its own collider's and its parts'.
+    pub fn sleeping_bounds(&self, entity: Entity, mut found: impl FnMut(Vec3, Vec3)) {
+        let parts = self.parts.get(&entity).map_or(&[][..], |p| &p[..]);
+        for e in std::iter::once(&entity).chain(parts) {
+            if let Some(c) = self.get(*e).filter(|c| c.asleep) {
+                found(c.aabb_min, c.aabb_max);
+            }
+        }
+    }
+
     /// Puts `entry` in the set (replacing the entity's old entry) with its bounds at its
     /// pose. Its `body` is set to [`STATIC`].
     pub fn insert(&mut self, mut entry: ColliderEntry) {
@@ -93,8 +111,12 @@ impl FixedSet {
                 parts.push(entry.entity);
             }
         }
+        self.asleep += entry.asleep as usize;
         match self.slots.get(&entry.entity) {
-            Some(&i) => self.entries[i as usize] = entry,
+            Some(&i) => {
+                self.asleep -= self.entries[i as usize].asleep as usize;
+                self.entries[i as usize] = entry;
+            }
             None => {
                 self.slots.insert(entry.entity, self.entries.len() as u32);
                 self.entries.push(entry);
@@ -114,7 +136,8 @@ impl FixedSet {
         let Some(i) = self.slots.remove(&entity) else {
             return false;
         };
-        self.entries.swap_remove(i as usize);
+        let gone = self.entries.swap_remove(i as usize);
+        self.asleep -= gone.asleep as usize;
         if let Some(moved) = self.entries.get(i as usize) {
             self.slots.insert(moved.entity, i);
         }

@@ -312,7 +312,7 @@ pub fn sync_fixed_set(
 /// boxes, then every sleeper touching those, and so on: the sleeping island around a
 /// support that moved or left. Woken bodies leave the fixed set now, so the gather that
 /// follows this step takes them.
-fn wake_neighbours(
+pub(super) fn wake_neighbours(
     commands: &mut Commands,
     world: &mut PhysicsWorld,
     disturbed: &mut Vec<(Vec3, Vec3)>,

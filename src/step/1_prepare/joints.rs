@@ -4,6 +4,11 @@
 //! - A joint with invalid input (NaN anchors, a zero axis, limits the wrong way round) is
 //!   left out with [`PhysicsRejected`] and an error naming the field, until it changes.
 //! - A joint to a despawned body is removed (its `Joint` component), with a warning.
+//! - Each end must be a body, a static collider, or a collider under a body (a compound
+//!   body's part: the joint acts on that body, at the part's pose), and the two ends
+//!   must not be one body. Otherwise the joint is refused with [`PhysicsRejected`] on
+//!   the joint (logged once) and the bodies move as if it were not there; its ends are
+//!   looked at again each step, and it comes back once they are right.
 //! - A side that is static (or the world) holds still; a side that sleeps holds still
 //!   this step and is woken if the other side is awake. A joint with no dynamic side is
 //!   ignored (two statics: with a warning, once).
@@ -11,7 +16,9 @@
 use bevy::platform::collections::{HashMap, HashSet};
 use bevy::prelude::*;
 
-use crate::body::{PhysicsRejected, Sleeping};
+use super::hierarchy::{ChainQuery, owner_body};
+use crate::body::{PhysicsRejected, RigidBody, Sleeping};
+use crate::collider::Collider;
 use crate::joint::{Joint, JointForces, JointKind};
 use crate::limits::{self, MAX_FORCE, MAX_RATE, MAX_SIZE, MAX_SPEED};
 use crate::math::Softness;
@@ -39,6 +46,61 @@ enum Missing {
     Rejected,
 }
 
+/// The fields a joint is refused for when an end is wrong, rather than its own values:
+/// looked at again every step, since what fixes them is on other entities.
+const END_FIELDS: [&str; 2] = ["Joint.body1", "Joint.body2"];
+
+/// What resolving a joint's end reads of the entity it names.
+type EndItem = (Has<RigidBody>, Has<Collider>);
+
+/// A joint's end resolved to the body it acts on and the anchor in that body's frame.
+/// `None` is the world.
+type End = (Option<Entity>, Vec3);
+
+/// Resolves one end: a body acts as itself, a collider under a body as a point of that
+/// body (its anchor carried from the part's frame into the body's), a static collider
+/// as itself. Anything else is not something a joint can hold.
+fn resolve_end(
+    field: &'static str,
+    body: Option<Entity>,
+    anchor: Vec3,
+    ends: &Query<EndItem>,
+    chain: &ChainQuery,
+) -> Result<End, Result<(&'static str, String), Missing>> {
+    let Some(entity) = body else {
+        return Ok((None, anchor));
+    };
+    let Ok((is_body, is_collider)) = ends.get(entity) else {
+        return Err(Err(Missing::Despawned));
+    };
+    if is_body {
+        return Ok((Some(entity), anchor));
+    }
+    if !is_collider {
+        return Err(Ok((
+            field,
+            format!("{entity} is neither a body nor a collider (no RigidBody, no Collider)"),
+        )));
+    }
+    let Some(owner) = owner_body(entity, chain) else {
+        return Ok((Some(entity), anchor)); // A static collider.
+    };
+    // The part's frame in its body's (unscaled) frame: the chain of local transforms
+    // between them, then the body's own scale.
+    let mut in_owner = Transform::IDENTITY;
+    let mut at = entity;
+    while at != owner {
+        let Ok((&local, parent, _)) = chain.get(at) else {
+            break;
+        };
+        in_owner = local.mul_transform(in_owner);
+        let Some(p) = parent else { break };
+        at = p.parent();
+    }
+    let scale = chain.get(owner).map_or(Vec3::ONE, |(t, _, _)| t.scale);
+    Ok((Some(owner), scale * in_owner.transform_point(anchor)))
+}
+
 /// What prepare reads of a body that is not awake.
 type StillItem = (
     Option<&'static Transform>,
@@ -53,8 +115,15 @@ type StillItem = (
 pub fn prepare_joints(
     mut commands: Commands,
     mut world: ResMut<PhysicsWorld>,
-    mut joints: Query<(Entity, Ref<Joint>, &mut JointForces, Has<PhysicsRejected>)>,
+    mut joints: Query<(
+        Entity,
+        Ref<Joint>,
+        &mut JointForces,
+        Option<&PhysicsRejected>,
+    )>,
     still: Query<StillItem>,
+    ends: Query<EndItem>,
+    chain: ChainQuery,
     mut index: Local<HashMap<Entity, u32>>,
     mut ignored: Local<HashSet<Entity>>,
 ) {
@@ -73,35 +142,73 @@ pub fn prepare_joints(
             .map(|(i, b)| (b.entity, i as u32)),
     );
     for (entity, joint, mut forces, rejected) in &mut joints {
-        if rejected {
-            if !joint.is_changed() {
-                continue;
-            }
-            commands.entity(entity).remove::<PhysicsRejected>();
-        }
-        if let Err((field, reason)) = check(&joint) {
-            error!(
-                "tumble: joint {entity} left out of the simulation: {field} is invalid ({reason})"
-            );
-            commands
-                .entity(entity)
-                .insert(PhysicsRejected { field, reason });
+        // Refused for its ends: looked at again every step. For its own values: when
+        // they change.
+        let refused_for_ends = rejected.is_some_and(|r| END_FIELDS.contains(&r.field));
+        if rejected.is_some() && !refused_for_ends && !joint.is_changed() {
             continue;
         }
-        let side =
-            |body: Option<Entity>, anchor: Vec3| side_of(world, &index, &still, body, anchor);
-        let (a, b) = match (
-            side(joint.body1, joint.local_anchor1),
-            side(Some(joint.body2), joint.local_anchor2),
-        ) {
+        let refuse = |commands: &mut Commands, (field, reason): (&'static str, String)| {
+            if rejected.is_none_or(|r| r.field != field || r.reason != reason) {
+                error!(
+                    "tumble: joint {entity} left out of the simulation: {field} is invalid ({reason})"
+                );
+                commands
+                    .entity(entity)
+                    .insert(PhysicsRejected { field, reason });
+            }
+        };
+        if let Err(e) = check(&joint) {
+            refuse(&mut commands, e);
+            continue;
+        }
+        let ends = (
+            resolve_end(
+                END_FIELDS[0],
+                joint.body1,
+                joint.local_anchor1,
+                &ends,
+                &chain,
+            ),
+            resolve_end(
+                END_FIELDS[1],
+                Some(joint.body2),
+                joint.local_anchor2,
+                &ends,
+                &chain,
+            ),
+        );
+        let ((body1, anchor1), (body2, anchor2)) = match ends {
             (Ok(a), Ok(b)) => (a, b),
-            (Err(Missing::Despawned), _) | (_, Err(Missing::Despawned)) => {
+            (Err(Err(Missing::Despawned)), _) | (_, Err(Err(Missing::Despawned))) => {
                 warn!(
                     "tumble: joint {entity} holds a body that no longer exists; the joint is removed"
                 );
                 commands.entity(entity).remove::<Joint>();
                 continue;
             }
+            (Err(Ok(e)), _) | (_, Err(Ok(e))) => {
+                refuse(&mut commands, e);
+                continue;
+            }
+            _ => continue,
+        };
+        if body1.is_some() && body1 == body2 {
+            let what = if joint.body1 == Some(joint.body2) {
+                "the same entity as body1".to_string()
+            } else {
+                format!("a part of the same body as body1 ({})", body2.unwrap())
+            };
+            refuse(&mut commands, ("Joint.body2", what));
+            continue;
+        }
+        if rejected.is_some() {
+            commands.entity(entity).remove::<PhysicsRejected>();
+        }
+        let side =
+            |body: Option<Entity>, anchor: Vec3| side_of(world, &index, &still, body, anchor);
+        let (a, b) = match (side(body1, anchor1), side(body2, anchor2)) {
+            (Ok(a), Ok(b)) => (a, b),
             _ => continue,
         };
         if !a.dynamic && !b.dynamic {
@@ -166,9 +273,9 @@ pub fn prepare_joints(
             held: Softness::new(0.0, 0.0, 1.0),
         });
         if !joint.collide_connected
-            && let Some(body1) = joint.body1
+            && let (Some(body1), Some(body2)) = (body1, body2)
         {
-            world.joint_pairs.insert(ordered_pair(body1, joint.body2));
+            world.joint_pairs.insert(ordered_pair(body1, body2));
         }
     }
 }

@@ -11,6 +11,7 @@ mod impulses;
 mod joints;
 mod kinematic;
 mod lifecycle;
+mod reach;
 mod settings;
 mod validate;
 
@@ -38,6 +39,7 @@ use kinematic::{Drive, drive_kinematic};
 pub use lifecycle::{
     PendingRechecks, SpawnCounter, number_collider, readmit_rejected, record_marker, record_removal,
 };
+pub use reach::wake_reached_sleepers;
 pub use settings::{guard_fixed_rate, validate_settings};
 pub use validate::validate;
 use validate::{BodyChecks, check_body, validate_mass_properties, validate_scalars};

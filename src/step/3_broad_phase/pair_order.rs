@@ -57,7 +57,7 @@ const FIXED_BIT: u32 = 1 << 31;
 /// unrelated bodies come and go). Pairs with something fixed (static or asleep) go first,
 /// whatever was spawned first: each Gauss–Seidel pass then works up from the ground,
 /// which stacks need (the solver runs them once more at the end of the pass, see
-/// `solve_contacts`). Two colliders with the same key (none today: every collider gets
+/// `solve_contacts`). Two colliders with the same key (none while every collider gets
 /// its own `SpawnOrder`) are ranked by their index.
 pub fn canonical_order(
     colliders: &[ColliderEntry],

@@ -23,10 +23,10 @@ mod reuse_tests;
 /// threads (each run of pairs into its own lists, joined in pair order: the same result
 /// on any number of threads). Measured in `peers/` on the 5,050-cube pyramid at two
 /// threads: the stage 9.8 ms serial, 4.8–8.0 ms split (the pool thread's half ran 1.5–2.5×
-/// slower than the caller's on this shared machine). From 2,048 the 385-cube pyramid
-/// split too (2,432 manifolds, nearly all moved from the step before, so little work a
-/// pair), and on session 28's Intel box its stage took 0.39-0.43 ms at two threads
-/// against 0.28-0.29 at one; from 4,096, 0.28-0.29 at two (two interleaved runs).
+/// slower than the caller's where other work shared the cores). From 2,048 the 385-cube
+/// pyramid split too (2,432 manifolds, nearly all moved from the step before, so little
+/// work a pair), and its stage took 0.39-0.43 ms at two threads against 0.28-0.29 at
+/// one; from 4,096, 0.28-0.29 at two (interleaved runs).
 pub const PARALLEL_PAIRS_FROM: usize = 4096;
 
 /// What the narrow phase finds for a run of pairs, in pair order.
@@ -463,7 +463,8 @@ mod tests {
                 !cache.has_index(),
                 "{runs} runs cut at kept pairs made the index"
             );
-            // The old cut: even, every run looking up from place 0.
+            // An even cut instead, every run looking up from place 0: runs miss, so the
+            // index is made.
             let even = pairs.len().div_ceil(runs);
             for start in (0..pairs.len()).step_by(even) {
                 assert!(look_up(&cache, start..(start + even).min(pairs.len()), 0));

@@ -24,19 +24,19 @@ use crate::world::{Anchors, ColliderEntry, Manifold};
 /// cubes: half the resting sag a contact is allowed, `SolverSettings::max_sag`), and at
 /// most a quarter of the pair's speculative margin.
 ///
-/// Measured on the 5,050-cube pyramid (`examples/stage_times`, 20 + 580 steps, session
-/// 29): the farther a cube has walked by step 600 (mostly the top cube, out of the plane)
+/// Measured on the 5,050-cube pyramid (`examples/stage_times`, 20 + 580 steps): the
+/// farther a cube has walked by step 600 (mostly the top cube, out of the plane)
 /// falls as the tolerance grows: 3e-5: 0.71 m, 1,520 cubes above 0.1 m/s, 9,492 of 14,950
 /// manifolds reused a step; 1e-4: 0.63 m, 1,169; 3e-4: 0.46 m, 225; 5e-4: 0.34 m, 109;
 /// 1e-3: 0.20 m, none (14,536 reused); 2e-3: 0.23 m, none; 5e-3: 0.18 m, none. Small
-/// changes give a wide spread (2e-5: 0.40 m, 4e-5: 0.42 m; two later changes of
-/// rounding moved 1e-3's to 0.32 m, 86 cubes, then 0.24 m, none), but not that trend.
+/// changes give a wide spread (2e-5: 0.40 m, 4e-5: 0.42 m; changes of rounding elsewhere
+/// move 1e-3's between 0.20 and 0.32 m, up to 86 cubes), but not that trend.
 /// (Why is not measured; a guess: a manifold found afresh moves its points by the
 /// clipping's rounding, and the warm start then pushes at slightly different places.)
 /// Step 220 is the same at every tolerance (0.186-0.190 m). The narrow phase took 5.5 ms a step at 3e-5 and 2.0 at
-/// 1e-3; 100 pyramids 5.1 and 2.0 ms, with no cube above 0.1 m/s at step 600 (67
-/// before). (Sessions 11-12, with a solver that shook the pyramid, had measured the
-/// opposite trend: 1e-3 walked 0.72 m.)
+/// 1e-3; 100 pyramids 5.1 and 2.0 ms, with no cube above 0.1 m/s at step 600 (67 at
+/// 3e-5). (The trend follows the solver: under one that shakes the pyramid it reverses,
+/// 1e-3 walking 0.72 m, so re-measure it when the solver changes.)
 pub const REUSE_DRIFT: f32 = 1e-3;
 
 /// The drift tolerance `d` of a pair (see the module docs), m.

@@ -34,19 +34,15 @@ const SPLIT_FROM: usize = 2 * MIN_CHUNK;
 /// waking (per pass, each wait costs about a microsecond).
 const PASS_FROM: usize = 256;
 /// The fewest batches a pass's split levels must hold on average: each level ends in a
-/// wait for both threads, and the bodies it moved cross to the other core's cache. At
-/// two threads, the pass on one thread against split, in one interleaved run of both
-/// (`peers`, three runs): the 385-cube pyramid (6.4 batches a split level) 0.86–0.95 of
-/// the split time and the large pyramid (8.3) 0.90–0.95; the 100 pyramids (71) took
-/// 1.02–1.20 of it, and rain (45) and the ball pit (64) the same. That was with a helper
-/// spawned per pass (16 then). With the step's crew (session 21; five interleaved
-/// comparisons at two threads), splitting the large pyramid took its solve from
-/// 26.9–28.8 ms to 25.1–26.3 (the whole step within the noise), while splitting the
-/// 385-cube pyramid's still slowed it (2.15–2.22 ms to 2.33–4.35): hence 8 there. On
-/// the Intel box of session 23 (Xeon model 207, KVM) splitting the large pyramid slowed
-/// it instead: at two threads, interleaved, its step took 37.7–40.6 ms split (from 8)
-/// against 34.4–34.6 whole (from 16), solve 28.8–30.3 against 25.5–26.0. A level of 8
-/// batches is too little work to pay for the wait on this box: hence 16.
+/// wait for both threads, and the bodies it moved cross to the other core's cache, so a
+/// level of about 8 batches is too little work to pay for it. Measured in `peers` at two
+/// threads, the pass on one thread against split, interleaved runs: levels of 45–71
+/// batches (rain, the ball pit, the 100 pyramids) took 1.02–1.20 of the split time on
+/// one thread, levels of 6.4–8.3 (the 385-cube and large pyramids) 0.86–0.95. Splitting
+/// from 8 slowed the 385-cube pyramid's solve (2.15–2.22 ms to 2.33–4.35); the large
+/// pyramid's it sped on some machines (26.9–28.8 ms to 25.1–26.3, the whole step within
+/// the noise) and slowed on others (step 37.7–40.6 ms split from 8 against 34.4–34.6
+/// from 16, solve 28.8–30.3 against 25.5–26.0): hence 16.
 const LEVEL_FROM: usize = 16;
 
 /// The claim word's step before the first level and after the last.
