@@ -82,7 +82,9 @@ pub struct SolverSettings {
     pub contact_damping_ratio: f32,
     /// Fastest speed, m/s, at which overlapping bodies are pushed apart.
     pub max_push_out: f32,
-    /// Normal approach speed, m/s, below which contacts don't bounce.
+    /// Normal approach speed, m/s, below which contacts don't bounce, at most: each step
+    /// uses the lesser of this and twice the speed gravity adds in a step (what a resting
+    /// contact approaches at), so in zero gravity every approach bounces. Default 1.
     pub restitution_threshold: f32,
     /// Contacts are created this far (m) before touching, on top of the distance the
     /// bodies can close in one step, so fast bodies don't tunnel. A pair whose thinner

@@ -55,7 +55,8 @@ fn a_joint_to_an_entity_that_is_not_a_body_is_refused_until_it_becomes_one() {
         let start = Vec3::new(3.0, 2.0, 0.0);
         let a = floating_ball(&mut app, start, Vec3::ZERO);
         let named = app.world_mut().spawn(Name::new("not a body")).id();
-        let joint = app.world_mut().spawn(Joint::fixed(named, a)).id();
+        let hold = Joint::fixed(named, a).with_local_anchors(Vec3::new(0.0, -1.0, 0.0), Vec3::ZERO);
+        let joint = app.world_mut().spawn(hold).id();
         step(&mut app, 30);
         assert_eq!(
             rejected_field(&app, joint),

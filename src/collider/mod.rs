@@ -296,7 +296,18 @@ impl Shape {
             }
             // Rebuilt from scaled points (a hull on a moving body with a scale other
             // than one is rebuilt every step: scale its points instead).
-            Shape::ConvexHull(ref h) => h.scaled(s).map_or_else(|| self.clone(), Shape::ConvexHull),
+            // A hull that cannot be rebuilt (a scale that flattens it to a plane or a
+            // line) becomes its bounding box under the same scale, which validation
+            // refuses as it refuses a flattened box: never the unscaled hull, silently.
+            Shape::ConvexHull(ref h) => h.scaled(s).map_or_else(
+                || {
+                    let (lo, hi) = self.aabb(Vec3::ZERO, Quat::IDENTITY);
+                    Shape::Cuboid {
+                        half_extents: (hi - lo) * 0.5 * s,
+                    }
+                },
+                Shape::ConvexHull,
+            ),
             Shape::TriMesh(ref m) => Shape::TriMesh(m.scaled(scale)),
             Shape::HeightField(ref f) => Shape::HeightField(f.scaled(s)),
             Shape::Plane { half_extents } => Shape::Plane {

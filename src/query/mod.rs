@@ -97,6 +97,21 @@ pub struct SpatialQuery<'w, 's> {
 /// this (parry's casts lose their precision on them).
 pub const MAX_QUERY_DISTANCE: f32 = 1.0e7;
 
+/// A query's pose, made usable: a finite position and a finite rotation of non-zero
+/// length (normalized here). Anything else answers nothing, with a warning once: a NaN
+/// in must never come back out as a NaN distance or point.
+fn usable(what: &str, position: Vec3, rotation: Quat) -> Option<Quat> {
+    let ok = position.is_finite() && rotation.is_finite() && rotation.length_squared() > 1e-12;
+    if !ok {
+        warn_once!(
+            "tumble: a spatial query was given a {what} that is not finite or a rotation of \
+             zero length ({position}, {rotation}); it finds nothing"
+        );
+        return None;
+    }
+    Some(rotation.normalize())
+}
+
 /// Accepts everything: the predicate of the queries that take none.
 fn any(_: Entity) -> bool {
     true
@@ -209,6 +224,10 @@ impl SpatialQuery<'_, '_> {
         max_distance: f32,
         filter: &SpatialQueryFilter,
     ) -> Option<ShapeHitData> {
+        let rotation = usable("cast origin", origin, rotation)?;
+        if max_distance.is_nan() {
+            return None;
+        }
         let dir = *direction;
         let max_distance = max_distance.min(MAX_QUERY_DISTANCE);
         let (lo0, hi0) = shape.shape.aabb(origin, rotation);
@@ -253,6 +272,9 @@ impl SpatialQuery<'_, '_> {
 
     /// Every collider that contains `point` (on its surface counts), in spawn order.
     pub fn point_intersections(&self, point: Vec3, filter: &SpatialQueryFilter) -> Vec<Entity> {
+        if usable("point", point, Quat::IDENTITY).is_none() {
+            return Vec::new();
+        }
         self.collect(point, point, filter, |c| {
             exact::contains_point(&c.entry.shape, c.pose, point)
         })
@@ -267,6 +289,9 @@ impl SpatialQuery<'_, '_> {
         max: Vec3,
         filter: &SpatialQueryFilter,
     ) -> Vec<Entity> {
+        if usable("box", min, Quat::IDENTITY).is_none() || !max.is_finite() {
+            return Vec::new();
+        }
         let region = Shape::Cuboid {
             half_extents: ((max - min) * 0.5).max(Vec3::ZERO),
         };
@@ -291,6 +316,9 @@ impl SpatialQuery<'_, '_> {
         rotation: Quat,
         filter: &SpatialQueryFilter,
     ) -> Vec<Entity> {
+        let Some(rotation) = usable("position", position, rotation) else {
+            return Vec::new();
+        };
         let (lo, hi) = shape.shape.aabb(position, rotation);
         self.collect(lo, hi, filter, |c| {
             exact::intersects(&shape.shape, (position, rotation), &c.entry.shape, c.pose)
@@ -305,6 +333,7 @@ impl SpatialQuery<'_, '_> {
         solid: bool,
         filter: &SpatialQueryFilter,
     ) -> Option<PointProjection> {
+        usable("point", point, Quat::IDENTITY)?;
         let (elo, ehi) = self.cache.with(&self.world, AwakeIndex::extent);
         // Search a growing box around the point: a collider whose box misses a box of
         // half size r is farther than r away, so the nearest within r is the nearest.
@@ -411,6 +440,9 @@ impl SpatialQuery<'_, '_> {
         predicate: &dyn Fn(Entity) -> bool,
         mut hit: impl FnMut(RayHitData, u64) -> bool,
     ) {
+        if usable("ray origin", origin, Quat::IDENTITY).is_none() || max_distance.is_nan() {
+            return;
+        }
         let dir = *direction;
         let max_distance = max_distance.min(MAX_QUERY_DISTANCE);
         let reach = self.reach(origin, dir, max_distance, Vec3::ZERO);

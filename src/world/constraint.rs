@@ -229,6 +229,8 @@ pub(crate) struct ContactParams {
     pub max_push_out: f32,
     /// Allowed resting sag per contact, as a fraction of the smaller body's size.
     pub max_sag: f32,
+    /// Normal approach speed below which a contact does not bounce this step, m/s.
+    pub bounce_threshold: f32,
 }
 
 /// A constraint's body `i`: the solver body, or the shared static one.

@@ -21,8 +21,10 @@ use crate::world::{ColliderEntry, ContactFilter, FixedSet, STATIC};
 #[derive(Component, Clone, Copy, Debug, Default)]
 pub struct BodyPart;
 
-/// Hierarchies below a body deeper than this are cut off (this only bounds the work).
-const MAX_DEPTH: usize = 32;
+/// How deep below a body the walk goes: far past any real hierarchy (a glTF scene's
+/// nesting is a few levels), only so that a malformed one cannot make it run forever.
+/// A part below it is left out with a warning, never silently.
+const MAX_DEPTH: usize = 1024;
 
 /// What a part of a compound body reads.
 #[derive(QueryData)]
@@ -100,7 +102,14 @@ impl PartScratch {
             let Ok(item) = query.get(entity) else {
                 continue;
             };
-            if item.is_body || depth > MAX_DEPTH {
+            if item.is_body {
+                continue;
+            }
+            if depth > MAX_DEPTH {
+                warn_once!(
+                    "tumble: entity {entity} is more than {MAX_DEPTH} levels below its body; \
+                     it and what is under it are left out"
+                );
                 continue;
             }
             let placed = above.mul_transform(*item.transform);

@@ -30,7 +30,7 @@ use super::lifecycle::PendingRechecks;
 use super::{FilterItem, fixed_entry, order_key, reject, validate_static};
 use crate::body::*;
 use crate::collider::Collider;
-use crate::effects::Effects;
+use crate::effects::{Effects, GravityScale};
 use crate::layers::CollisionLayers;
 use crate::settings::{GlobalForce, SolverSettings};
 use crate::world::PhysicsWorld;
@@ -63,15 +63,27 @@ pub struct FixedItem {
 type ChangedFilter = (
     With<InFixedSet>,
     Or<(
-        Changed<Transform>,
-        Changed<Collider>,
-        Changed<RigidBody>,
-        Changed<Friction>,
-        Changed<Restitution>,
-        Changed<Velocity>,
-        Changed<ExternalForce>,
-        Changed<ExternalImpulse>,
-        Changed<CollisionLayers>,
+        Or<(
+            Changed<Transform>,
+            Changed<Collider>,
+            Changed<RigidBody>,
+            Changed<Friction>,
+            Changed<Restitution>,
+            Changed<Velocity>,
+            Changed<ExternalForce>,
+            Changed<ExternalImpulse>,
+            Changed<CollisionLayers>,
+        )>,
+        // What a body is weighed and moved by.
+        Or<(
+            Changed<Mass>,
+            Changed<AngularInertia>,
+            Changed<CenterOfMass>,
+            Changed<ColliderDensity>,
+            Changed<GravityScale>,
+            Changed<LinearDamping>,
+            Changed<AngularDamping>,
+        )>,
     )>,
 );
 
@@ -87,6 +99,15 @@ pub struct Edits {
     force: Option<Ref<'static, ExternalForce>>,
     impulse: Option<Ref<'static, ExternalImpulse>>,
     layers: Option<Ref<'static, CollisionLayers>>,
+    mass: Option<Ref<'static, Mass>>,
+    inertia: Option<Ref<'static, AngularInertia>>,
+    center_of_mass: Option<Ref<'static, CenterOfMass>>,
+    density: Option<Ref<'static, ColliderDensity>>,
+    gravity_scale: Option<Ref<'static, GravityScale>>,
+    damping: (
+        Option<Ref<'static, LinearDamping>>,
+        Option<Ref<'static, AngularDamping>>,
+    ),
 }
 
 impl EditsItem<'_, '_> {
@@ -103,6 +124,45 @@ impl EditsItem<'_, '_> {
             || changed(&self.force)
             || changed(&self.impulse)
             || changed(&self.layers)
+            || changed(&self.mass)
+            || changed(&self.inertia)
+            || changed(&self.center_of_mass)
+            || changed(&self.density)
+            || changed(&self.gravity_scale)
+            || changed(&self.damping.0)
+            || changed(&self.damping.1)
+    }
+}
+
+/// What a game may have edited on a body in the frame it fell asleep: the sleep stage
+/// zeroed its velocity and then marked it `Sleeping`, so anything changed after the
+/// marker was added is the game's hand, and wakes it.
+#[derive(QueryData)]
+pub struct LateEdits {
+    sleeping: Ref<'static, Sleeping>,
+    velocity: Option<Ref<'static, Velocity>>,
+    force: Option<Ref<'static, ExternalForce>>,
+    impulse: Option<Ref<'static, ExternalImpulse>>,
+    mass: Option<Ref<'static, Mass>>,
+    gravity_scale: Option<Ref<'static, GravityScale>>,
+}
+
+impl LateEditsItem<'_, '_> {
+    fn edited(&self, this_run: bevy::ecs::change_detection::Tick) -> bool {
+        let since = self.sleeping.added();
+        fn newer<T: Component>(
+            r: &Option<Ref<T>>,
+            since: bevy::ecs::change_detection::Tick,
+            now: bevy::ecs::change_detection::Tick,
+        ) -> bool {
+            r.as_ref()
+                .is_some_and(|r| r.last_changed().is_newer_than(since, now))
+        }
+        newer(&self.velocity, since, this_run)
+            || newer(&self.force, since, this_run)
+            || newer(&self.impulse, since, this_run)
+            || newer(&self.mass, since, this_run)
+            || newer(&self.gravity_scale, since, this_run)
     }
 }
 
@@ -141,7 +201,8 @@ pub fn sync_fixed_set(
     >,
     part_edits: Query<Entity, (With<BodyPart>, Or<(Changed<Transform>, Changed<Collider>)>)>,
     part_items: Query<PartItem>,
-    fell_asleep: Query<Entity, (With<Sleeping>, Unmarked)>,
+    fell_asleep: Query<(Entity, LateEdits), (With<Sleeping>, Unmarked)>,
+    ticks: bevy::ecs::system::SystemChangeTick,
     changed: Query<(Entity, Has<Sleeping>, Edits), ChangedFilter>,
     sleepers: Query<Entity, (With<Sleeping>, With<InFixedSet>)>,
     mut pending: ResMut<PendingRechecks>,
@@ -178,7 +239,12 @@ pub fn sync_fixed_set(
     }));
     recheck.extend(unmarked.iter().map(|e| (e, false)));
     recheck.extend(part_edits.iter().map(|e| (e, false)));
-    recheck.extend(fell_asleep.iter().map(|e| (e, wake_all)));
+    let now = ticks.this_run();
+    recheck.extend(
+        fell_asleep
+            .iter()
+            .map(|(e, late)| (e, wake_all || late.edited(now))),
+    );
     recheck.extend(pending.entities.drain(..).map(|e| (e, false)));
     if recheck.is_empty() {
         return;

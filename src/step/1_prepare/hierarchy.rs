@@ -16,9 +16,9 @@ use crate::body::RigidBody;
 pub type ChainQuery<'w, 's> =
     Query<'w, 's, (&'static Transform, Option<&'static ChildOf>, Has<RigidBody>)>;
 
-/// Hierarchies deeper than this are cut off (Bevy's hierarchies have no cycles; this only
-/// bounds the work).
-const MAX_DEPTH: usize = 64;
+/// How far up a chain of parents the walks go: far past any real hierarchy, only so
+/// that a malformed one cannot make them run forever.
+const MAX_DEPTH: usize = 1024;
 
 /// An entity's transform in the world, composed up its `ChildOf` chain, and whether an
 /// ancestor is a rigid body.

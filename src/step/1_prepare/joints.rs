@@ -232,6 +232,12 @@ pub fn prepare_joints(
             JointKind::Spherical { twist, .. } => (JointRows::Spherical, twist, None, None),
             JointKind::Revolute { limits, motor } => (JointRows::Revolute, limits, motor, None),
             JointKind::Prismatic { limits, motor } => (JointRows::Prismatic, limits, motor, None),
+            // No length at all: the anchors together. A distance row has no direction
+            // to push along there (the anchors' offset is noise), so the body would
+            // circle the pin; the point's three rows hold it still.
+            JointKind::Distance {
+                max, spring: None, ..
+            } if max <= ZERO_LENGTH => (JointRows::Spherical, None, None, None),
             JointKind::Distance { min, max, spring } => {
                 let spring = spring.map(|s| (s.rest, s.hertz, s.damping_ratio));
                 (JointRows::Distance, Some((min, max)), None, spring)
@@ -279,6 +285,9 @@ pub fn prepare_joints(
         }
     }
 }
+
+/// A distance joint no longer than this, m, holds its anchors together as a point.
+const ZERO_LENGTH: f32 = 1e-6;
 
 /// A distance joint's longest length, m (0 for the other kinds, and for a spring or rope
 /// without one).

@@ -103,6 +103,27 @@ pub struct SolverScratch {
     tension: Vec<(u32, f32)>,
 }
 
+/// Approach speeds a resting contact reaches, as a multiple of the speed gravity adds in
+/// one step: the contact takes up to that speed back each step, and must not bounce it.
+const RESTING_APPROACH: f32 = 2.0;
+
+/// The normal approach speed below which a contact does not bounce, m/s: the setting,
+/// lowered to what a resting contact can reach ([`RESTING_APPROACH`] steps of gravity's
+/// speed). A body at rest under gravity approaches its support at about |g|·dt each
+/// step; anything faster is an impact. In zero gravity nothing rests by approaching, so
+/// every approach bounces: a fixed 1 m/s there turned every slow collision of an elastic
+/// gas inelastic, and it lost half its energy in 20 s.
+fn bounce_threshold(settings: &SolverSettings, effects: &Effects, gravity: Vec3, dt: f32) -> f32 {
+    let g = if effects.gravity {
+        gravity.length()
+    } else {
+        0.0
+    };
+    settings
+        .restitution_threshold
+        .min(RESTING_APPROACH * g * dt)
+}
+
 /// Solves every contact of this step.
 pub fn solve_contacts(
     mut world: ResMut<PhysicsWorld>,
@@ -131,6 +152,7 @@ pub fn solve_contacts(
         dt,
         max_push_out: settings.max_push_out,
         max_sag: settings.max_sag,
+        bounce_threshold: bounce_threshold(&settings, &effects, gravity.0, dt),
     };
     // Last step's impulses were per substep of last step's length: rescale them to this
     // step's substep, then see how stiff the stiffest contact wants to be.
@@ -391,7 +413,7 @@ fn run_stage(
             // (Not even a scan over the contacts when none bounces.) The batched ones
             // bounce in their lanes (see `bounce`).
             if scratch.bounce {
-                let threshold = settings.restitution_threshold;
+                let threshold = params.bounce_threshold;
                 let (c, batches) = (&mut world.constraints, &mut scratch.batches);
                 restitution_steps(bodies, c, batches, threshold);
             }

@@ -18,6 +18,7 @@ use crate::world::{
 
 fn params() -> ContactParams {
     ContactParams {
+        bounce_threshold: 1.0,
         friction: true,
         hertz: 30.0,
         max_hertz: 60.0,

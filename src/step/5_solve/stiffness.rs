@@ -315,6 +315,7 @@ mod tests {
 
     fn params(h: f32) -> ContactParams {
         ContactParams {
+            bounce_threshold: 1.0,
             friction: true,
             hertz: 30.0,
             max_hertz: 0.25 / h,
