@@ -366,12 +366,9 @@ fn ordered(a: Entity, b: Entity) -> (Entity, Entity) {
 
 /// Triggers `event` on each collider of the pair that asked for events, with itself as
 /// `collider1`.
-fn trigger_both<E: EntityEvent>(
-    commands: &mut Commands,
-    pair: TouchingPair,
-    event: impl Fn(TouchingPair) -> E,
-) where
-    E: for<'a> Event<Trigger<'a> = bevy::ecs::event::EntityTrigger>,
+fn trigger_both<E>(commands: &mut Commands, pair: TouchingPair, event: impl Fn(TouchingPair) -> E)
+where
+    E: EntityEvent + for<'a> Event<Trigger<'a> = bevy::ecs::event::EntityTrigger>,
 {
     if pair.events.0 {
         commands.trigger(event(pair));

@@ -1,4 +1,4 @@
-#![warn(missing_docs)]
+#![deny(missing_docs)]
 //! # tumble — 3D rigid-body physics for Bevy
 //!
 //! Bodies are ordinary entities with a [`Transform`](bevy::prelude::Transform) plus the

@@ -148,7 +148,7 @@ mod tests {
         let c = Posed {
             shape: &s,
             pos: Vec3::new(0.399, 0.0, 0.0),
-            rot: Quat::from_rotation_x(1.5708),
+            rot: Quat::from_rotation_x(std::f32::consts::FRAC_PI_2),
         };
         let mut m = Manifold::default();
         collide(a, (0.2, 0.3), c, (0.2, 0.3), 0.05, &mut m);

@@ -296,7 +296,7 @@ mod tests {
         // A long box's hull turned 30° about z, as the only part: the sum is the box's
         // inertia turned by those 30°, whatever frame the hull's own axes came out in.
         let h = Vec3::new(0.6, 0.1, 0.2);
-        let turn = Quat::from_rotation_z(0.5236);
+        let turn = Quat::from_rotation_z(std::f32::consts::FRAC_PI_6);
         let corners: Vec<Vec3> = (0..8)
             .map(|i| {
                 let s = Vec3::new(

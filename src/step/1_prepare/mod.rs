@@ -232,7 +232,7 @@ pub fn prepare_bodies(
         // body's collider sits at its origin.
         let dynamic = kind == RigidBody::Dynamic;
         let compound = (!parts.is_empty())
-            .then(|| compound_mass(&parts, item.mass, item.angular_inertia, item.center_of_mass));
+            .then(|| compound_mass(parts, item.mass, item.angular_inertia, item.center_of_mass));
         let (com, frame) = match (dynamic, compound, item.center_of_mass) {
             (true, Some(c), _) => (c.com, c.frame),
             (true, None, Some(c)) => (c.0, Quat::IDENTITY),

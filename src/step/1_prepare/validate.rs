@@ -95,7 +95,7 @@ fn plainly_valid(b: &BodyChecks) -> bool {
     let com = b.center_of_mass.is_none_or(|c| within(c.0, MAX_SIZE));
     within(b.tf.translation, f32::MAX)
         & b.tf.rotation.is_finite()
-        & (len2 >= 1e-12 && len2 <= f32::MAX)
+        & (1e-12..=f32::MAX).contains(&len2)
         & within(b.vel.linear, MAX_SPEED)
         & within(b.vel.angular, MAX_RATE)
         & mass

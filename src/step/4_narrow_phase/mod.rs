@@ -429,7 +429,7 @@ mod tests {
     #[test]
     fn runs_cut_at_last_steps_pairs_make_no_index() {
         let pairs: Vec<(u32, u32)> = (0..3000).map(|i| (i / 7, 500 + i)).collect();
-        let touching = |k: usize| k % 3 != 0;
+        let touching = |k: usize| !k.is_multiple_of(3);
         let entity = |i: u32| Entity::from_raw_u32(i).unwrap();
         let key = |m: &Manifold| (entity(m.a), entity(m.b), m.sub);
         let mut last: Vec<Manifold> = (pairs.iter().enumerate())

@@ -334,7 +334,7 @@ mod tests {
         // wanted_hertz contact by contact: the same bits, for random pairs and the odd
         // ones (two fixed sides, a size of 0, an impact).
         let p = params(1.0 / 240.0);
-        let mut rng = crate::rng::Rnd(0x5eed_5a9);
+        let mut rng = crate::rng::Rnd(0x05ee_d5a9);
         for trial in 0..200 {
             let mut folded = NeededHertz::default();
             let mut largest = 0.0f32;
