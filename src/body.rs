@@ -291,9 +291,24 @@ pub struct Sleeping;
 /// scene does not depend on where its entities sit in the ECS tables, on recycled entity
 /// ids, or on what else was spawned and despawned meanwhile. Added by tumble.
 #[derive(Component, Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub struct SpawnOrder(pub u64);
+pub struct SpawnOrder(pub(crate) u64);
 
-/// How long (s) a body has been slow enough to sleep. Kept by tumble.
+impl SpawnOrder {
+    /// The collider's place in the order (0 for the first collider ever added).
+    pub fn get(self) -> u64 {
+        self.0
+    }
+}
+
+/// How long (s) a body has been slow enough to sleep. Kept by tumble: read it, don't
+/// write it (to wake a body, remove [`Sleeping`]; to keep one awake, move it).
 #[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq)]
 #[reflect(Component)]
-pub struct SleepTimer(pub f32);
+pub struct SleepTimer(pub(crate) f32);
+
+impl SleepTimer {
+    /// Seconds the body has been still.
+    pub fn seconds(self) -> f32 {
+        self.0
+    }
+}

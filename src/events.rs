@@ -203,7 +203,7 @@ impl PhysicsWorld {
 /// A pair that touched last step: the two colliders (lower entity first), whether each
 /// wants entity events and has a body, and whether a sensor is involved.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct TouchingPair {
+pub(crate) struct TouchingPair {
     /// The two colliders, lower entity first.
     pub colliders: (Entity, Entity),
     /// Whether each has [`CollisionEventsEnabled`].
@@ -254,7 +254,7 @@ impl TouchingPair {
 /// Scratch kept between steps: this step's reported pairs with their contact data, and
 /// a spare map to swap with `PhysicsWorld::touching`.
 #[derive(Default)]
-pub struct ReportScratch {
+pub(crate) struct ReportScratch {
     now: Vec<(TouchingPair, ContactData)>,
     ends: Vec<TouchingPair>,
     spare: HashMap<(Entity, Entity), TouchingPair>,
@@ -262,7 +262,7 @@ pub struct ReportScratch {
 
 /// Compares this step's touching pairs (of colliders with events enabled) with last
 /// step's, writes the messages and triggers the entity events.
-pub fn report_collisions(
+pub(crate) fn report_collisions(
     mut world: ResMut<PhysicsWorld>,
     mut started: MessageWriter<CollisionStart>,
     mut ended: MessageWriter<CollisionEnd>,

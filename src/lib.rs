@@ -57,8 +57,7 @@ pub mod prelude {
     pub use crate::body::{
         AngularDamping, AngularInertia, CenterOfMass, CoefficientCombine, ColliderDensity,
         ExternalForce, ExternalImpulse, Friction, FrictionCombine, LinearDamping, Mass,
-        PhysicsRejected, Restitution, RestitutionCombine, RigidBody, SleepTimer, Sleeping,
-        Velocity,
+        PhysicsRejected, Restitution, RestitutionCombine, RigidBody, Sleeping, Velocity,
     };
     pub use crate::collider::Collider;
     pub use crate::diagnostics::PhysicsDiagnosticsPlugin;

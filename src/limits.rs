@@ -59,7 +59,11 @@ impl std::fmt::Display for Invalid {
 }
 
 /// `x` is finite and in `range`.
-pub fn scalar(field: &'static str, x: f32, range: RangeInclusive<f32>) -> Result<(), Invalid> {
+pub(crate) fn scalar(
+    field: &'static str,
+    x: f32,
+    range: RangeInclusive<f32>,
+) -> Result<(), Invalid> {
     if x.is_finite() && range.contains(&x) {
         Ok(())
     } else {
@@ -75,7 +79,7 @@ pub fn scalar(field: &'static str, x: f32, range: RangeInclusive<f32>) -> Result
 }
 
 /// `x` is finite, > 0 and ≤ `max`.
-pub fn positive(field: &'static str, x: f32, max: f32) -> Result<(), Invalid> {
+pub(crate) fn positive(field: &'static str, x: f32, max: f32) -> Result<(), Invalid> {
     if x.is_finite() && x > 0.0 && x <= max {
         Ok(())
     } else {
@@ -87,7 +91,7 @@ pub fn positive(field: &'static str, x: f32, max: f32) -> Result<(), Invalid> {
 }
 
 /// Every component of `v` finite with magnitude ≤ `max`.
-pub fn vector(field: &'static str, v: Vec3, max: f32) -> Result<(), Invalid> {
+pub(crate) fn vector(field: &'static str, v: Vec3, max: f32) -> Result<(), Invalid> {
     if v.is_finite() && v.abs().max_element() <= max {
         Ok(())
     } else {
@@ -100,7 +104,7 @@ pub fn vector(field: &'static str, v: Vec3, max: f32) -> Result<(), Invalid> {
 
 /// The fixed rate, Hz, clamped into [`RATE_HZ`]; a non-finite rate gives 60 Hz. Returns
 /// the rate to use and, if it differs, why.
-pub fn clamp_rate(hz: f64) -> (f64, Option<String>) {
+pub(crate) fn clamp_rate(hz: f64) -> (f64, Option<String>) {
     if !hz.is_finite() {
         return (
             60.0,

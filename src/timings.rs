@@ -35,7 +35,7 @@ impl StepTimings {
 
 /// Closes the previous stage's time and opens stage `S` (`S` = the number of stages closes
 /// the last one).
-pub fn stamp<const S: usize>(mut t: ResMut<StepTimings>) {
+pub(crate) fn stamp<const S: usize>(mut t: ResMut<StepTimings>) {
     let now = Instant::now();
     if let (Some(started), true) = (t.started, S > 0) {
         let prev = t.stage;

@@ -180,7 +180,7 @@ fn finite_union(boxes: impl Iterator<Item = (Vec3, Vec3)>) -> (Vec3, Vec3) {
 /// Added by [`TumblePlugin`](crate::TumblePlugin); read through
 /// [`SpatialQuery`](super::SpatialQuery).
 #[derive(Resource, Default)]
-pub struct SpatialQueryCache {
+pub(crate) struct SpatialQueryCache {
     awake: RwLock<AwakeIndex>,
     /// Tests: walk every collider and skip every box test (the reference).
     #[cfg(test)]

@@ -29,7 +29,7 @@ use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 
 pub use filter::SpatialQueryFilter;
-pub use index::SpatialQueryCache;
+pub(crate) use index::SpatialQueryCache;
 use index::{AwakeIndex, Candidate};
 
 use crate::collider::{Collider, Shape};
