@@ -8,7 +8,7 @@ use bevy::prelude::*;
 
 use super::Posed;
 use super::polygon::reduce;
-use crate::world::{MAX_POINTS, Manifold};
+use super::{MAX_POINTS, Manifold};
 
 /// Candidate points off the main normal by more than this (cos 22.5°) are not the same
 /// contact.

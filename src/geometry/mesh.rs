@@ -13,7 +13,7 @@ use parry3d::query::{
 use super::Posed;
 use super::parry::{Local, point_id, pose};
 use super::polygon::reduce;
-use crate::world::{MAX_POINTS, Manifold};
+use super::{MAX_POINTS, Manifold};
 
 /// What one call needs, reused so a mesh pair allocates nothing once warm.
 #[derive(Default)]

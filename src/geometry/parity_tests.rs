@@ -5,10 +5,10 @@
 
 use bevy::prelude::*;
 
+use super::Manifold;
 use super::{DISPATCH, Posed, parry};
 use crate::collider::Shape;
 use crate::rng::Rnd;
-use crate::world::Manifold;
 
 /// Random shapes of the three hand-written kinds.
 trait RandomShape {

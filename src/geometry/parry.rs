@@ -16,8 +16,8 @@ use parry3d::shape::{
 
 use super::Posed;
 use super::polygon::reduce;
+use super::{MAX_POINTS, Manifold};
 use crate::collider::Shape;
-use crate::world::{MAX_POINTS, Manifold};
 
 /// One of our shapes as parry's: the simple ones built on the stack (no allocation),
 /// the ones made of points borrowed.

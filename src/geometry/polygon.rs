@@ -3,7 +3,7 @@
 
 use bevy::prelude::*;
 
-use crate::world::MAX_POINTS;
+use super::MAX_POINTS;
 
 /// Enough room for a quad clipped by four planes (at most 8 vertices) and then some.
 const CAP: usize = 12;

@@ -27,8 +27,8 @@ pub fn ballistic(integrator: Integrator, v0: Vec3, a: Vec3, h: f32, n: u32) -> (
 mod tests {
     use super::*;
     use crate::body::RigidBody;
+    use crate::math::ForceModel;
     use crate::math::{Inertial, free_substep};
-    use crate::world::ForceModel;
 
     #[test]
     fn closed_form_matches_the_substeps_of_every_integrator() {

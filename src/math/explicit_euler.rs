@@ -9,8 +9,8 @@
 
 use bevy::prelude::*;
 
+use super::ForceModel;
 use super::{Inertial, linear_accel, rotate};
-use crate::world::ForceModel;
 
 pub fn linear(f: &ForceModel, v: Vec3, h: f32) -> (Vec3, Vec3) {
     (v * h, v + linear_accel(f, v) * h)

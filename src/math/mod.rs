@@ -21,7 +21,6 @@ use bevy::prelude::*;
 
 use crate::body::RigidBody;
 use crate::settings::Integrator;
-use crate::world::{BodyState, ForceModel};
 
 pub use ballistic::ballistic;
 pub use frames::to_parent_frame;
@@ -41,6 +40,19 @@ pub struct FreeStep {
     pub w: Vec3,
 }
 
+/// Accelerations and torques on a body from gravity, user forces and drag.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct ForceModel {
+    /// Constant part of the linear acceleration: gravity + force/mass.
+    pub accel: Vec3,
+    /// World-frame torque, N·m.
+    pub torque: Vec3,
+    /// Linear drag coefficient c: a −= c·v.
+    pub linear_damping: f32,
+    /// Angular drag coefficient: α −= c·ω.
+    pub angular_damping: f32,
+}
+
 /// What the integrators need to know about a body besides its state.
 #[derive(Clone, Copy, Debug)]
 pub struct Inertial<'a> {
@@ -49,17 +61,6 @@ pub struct Inertial<'a> {
     pub inertia: Vec3,
     pub inv_inertia: Vec3,
     pub rotation_locked: bool,
-}
-
-impl<'a> Inertial<'a> {
-    pub fn of(body: &'a BodyState) -> Self {
-        Self {
-            forces: &body.forces,
-            inertia: body.inertia,
-            inv_inertia: body.inv_inertia,
-            rotation_locked: body.rotation_locked,
-        }
-    }
 }
 
 /// Advances the free motion of one body by `h` from orientation `q`, velocities `v`, `w`.

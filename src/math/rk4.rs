@@ -6,8 +6,8 @@
 
 use bevy::prelude::*;
 
+use super::ForceModel;
 use super::{Inertial, angular_accel, linear_accel};
-use crate::world::ForceModel;
 
 pub fn linear(f: &ForceModel, v: Vec3, h: f32) -> (Vec3, Vec3) {
     let a1 = linear_accel(f, v);

@@ -5,8 +5,8 @@
 
 use bevy::prelude::*;
 
+use super::ForceModel;
 use super::{Inertial, is_isotropic_moments, rotate, solve_gyroscopic_midpoint};
-use crate::world::ForceModel;
 
 #[inline]
 pub fn linear(f: &ForceModel, v: Vec3, h: f32) -> (Vec3, Vec3) {

@@ -5,7 +5,7 @@
 
 use bevy::prelude::*;
 
-use super::manifold::MAX_POINTS;
+use super::MAX_POINTS;
 use super::{STATIC, SolverBody};
 use crate::math::Softness;
 

@@ -7,18 +7,21 @@ mod awake_tree;
 mod batching;
 mod body_view;
 mod bounds_index;
+mod collide;
 mod constraint;
 mod contact_batch;
 mod fixed_set;
 mod joint;
-mod manifold;
 mod warm_start_cache;
 
+pub(crate) use crate::geometry::{Anchors, MAX_POINTS, Manifold};
+pub(crate) use crate::math::{ForceModel, Inertial};
 pub(crate) use awake_tree::{AwakeTree, Leaf};
 pub(crate) use batching::{
     ContactBatches, ContactKey, LANES, NO_CONTACT, SolveStep, SolveWork, prefetch,
 };
 pub(crate) use body_view::{BodyView, Shared, SharedBodies};
+pub(crate) use collide::{coincident_nudge, collide, collide_each};
 pub(crate) use constraint::{
     Anchoring, AngularRow, COUPLINGS, ConstraintPoint, ContactConstraint, ContactParams,
     FrictionAnchor, NO_ROLL, RollingArms, body, coupling_index, normal_couplings, row_velocity,
@@ -27,7 +30,6 @@ pub(crate) use constraint::{
 pub(crate) use contact_batch::{AnchorLanes, ContactBatch, FrictionLanes, PointLanes};
 pub(crate) use fixed_set::FixedSet;
 pub(crate) use joint::{JointConstraint, JointRows, ordered_pair};
-pub(crate) use manifold::{Anchors, MAX_POINTS, Manifold};
 pub(crate) use warm_start_cache::WarmStartCache;
 
 use bevy::platform::collections::HashMap;
@@ -56,17 +58,16 @@ pub(crate) struct SolverBody {
     pub inv_inertia: Mat3,
 }
 
-/// Accelerations and torques on a body from gravity, user forces and drag.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct ForceModel {
-    /// Constant part of the linear acceleration: gravity + force/mass.
-    pub accel: Vec3,
-    /// World-frame torque, N·m.
-    pub torque: Vec3,
-    /// Linear drag coefficient c: a −= c·v.
-    pub linear_damping: f32,
-    /// Angular drag coefficient: α −= c·ω.
-    pub angular_damping: f32,
+/// The integrators' view of a body.
+impl<'a> Inertial<'a> {
+    pub fn of(body: &'a BodyState) -> Self {
+        Self {
+            forces: &body.forces,
+            inertia: body.inertia,
+            inv_inertia: body.inv_inertia,
+            rotation_locked: body.rotation_locked,
+        }
+    }
 }
 
 /// The cold per-body data of one step, parallel to [`PhysicsWorld::solver_bodies`].

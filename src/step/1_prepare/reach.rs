@@ -24,10 +24,9 @@ use bevy::prelude::*;
 use super::fixed::wake_neighbours;
 use crate::body::{Sleeping, Velocity};
 use crate::effects::Effects;
-use crate::geometry::collide;
 use crate::joint::Joint;
 use crate::settings::{SleepSettings, SolverSettings};
-use crate::world::{ColliderEntry, PhysicsWorld, STATIC};
+use crate::world::{ColliderEntry, PhysicsWorld, STATIC, collide};
 
 /// Scratch kept between steps.
 #[derive(Default)]

@@ -9,11 +9,13 @@
 
 use bevy::prelude::*;
 
-use crate::geometry::{collide, collide_each, has_mesh};
+use crate::geometry::has_mesh;
 use crate::limits::MAX_MANIFOLDS_PER_STEP;
 use crate::math::lanes::three_operand_copy;
 use crate::settings::SolverSettings;
-use crate::world::{ColliderEntry, Manifold, PhysicsWorld, STATIC, WarmStartCache};
+use crate::world::{
+    ColliderEntry, Manifold, PhysicsWorld, STATIC, WarmStartCache, collide, collide_each,
+};
 
 mod reuse;
 #[cfg(test)]

@@ -17,7 +17,7 @@
 use bevy::prelude::*;
 
 use crate::collider::Shape;
-use crate::geometry::coincident_nudge;
+use crate::world::coincident_nudge;
 use crate::world::{Anchors, ColliderEntry, Manifold};
 
 /// The drift tolerance as a fraction of the thinner box's thickness (1 mm for two 1 m

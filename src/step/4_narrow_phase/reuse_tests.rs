@@ -8,8 +8,8 @@ use bevy::prelude::*;
 
 use super::reuse::{REUSE_DRIFT, anchor, reuse};
 use crate::collider::Shape;
-use crate::geometry::collide;
 use crate::rng::Rnd;
+use crate::world::collide;
 use crate::world::{ColliderEntry, Manifold};
 
 /// The speculative margin of boxes this size (the default setting).

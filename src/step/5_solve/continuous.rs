@@ -21,8 +21,8 @@
 
 use bevy::prelude::*;
 
-use crate::geometry::collide;
 use crate::settings::{CONTINUOUS_SLOP, SLOP_OF_THICKNESS, SolverSettings};
+use crate::world::collide;
 use crate::world::{ColliderEntry, PhysicsWorld, STATIC};
 
 /// Bisection steps on the path: the pose is found to 1/2^10 of the step's motion.

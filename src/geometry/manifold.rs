@@ -38,7 +38,7 @@ pub(crate) struct ContactPoint {
 /// The contact between two colliders: one normal, up to [`MAX_POINTS`] points.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Manifold {
-    /// Collider indices into [`PhysicsWorld::colliders`](crate::PhysicsWorld).
+    /// Indices into the step's list of colliders.
     pub a: u32,
     pub b: u32,
     /// Unit normal pointing from A to B.
