@@ -13,6 +13,40 @@
 //! coefficients) are plain functions over slices, tested without Bevy. Only prepare and
 //! writeback touch the ECS. [`PhysicsWorld`] exposes counts and contacts; its arrays are
 //! the crate's own.
+//!
+//! ## Quick start
+//!
+//! A game adds [`TumblePlugin`] beside `DefaultPlugins`; a headless test adds it beside
+//! `MinimalPlugins`, as here (the guide, `docs/guide.md`, covers the rest):
+//!
+//! ```
+//! use bevy::prelude::*;
+//! use bevy::time::TimeUpdateStrategy;
+//! use tumble::prelude::*;
+//!
+//! let mut app = App::new();
+//! app.add_plugins((MinimalPlugins, TransformPlugin, TumblePlugin::default()))
+//!     // One 60 Hz physics step per `update()`, whatever the wall clock says.
+//!     .insert_resource(TimeUpdateStrategy::FixedTimesteps(1));
+//! // A collider without a `RigidBody` is static; a plane faces its local +Y.
+//! app.world_mut().spawn((Collider::plane(), Transform::default()));
+//! // Box sizes are half extents: a 1 m cube of 50 kg, dropped from 2 m.
+//! let crate_ = app
+//!     .world_mut()
+//!     .spawn((
+//!         RigidBody::Dynamic,
+//!         Collider::cuboid(0.5, 0.5, 0.5),
+//!         Mass(50.0),
+//!         Transform::from_xyz(0.0, 2.0, 0.0),
+//!     ))
+//!     .id();
+//! for _ in 0..120 {
+//!     app.update();
+//! }
+//! // Two seconds later it rests on the ground, its centre half a metre up.
+//! let y = app.world().get::<Transform>(crate_).unwrap().translation.y;
+//! assert!((y - 0.5).abs() < 0.01, "resting at {y}");
+//! ```
 
 #[cfg(feature = "bench-internals")]
 #[doc(hidden)]

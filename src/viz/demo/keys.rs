@@ -52,6 +52,16 @@ fn handle_keys(
             switch.write(SwitchScene(i));
         }
     }
+    // Every scene, past the ten the digits reach: previous and next, wrapping around.
+    let n = scenes.handles.len();
+    if n > 0 {
+        if keys.just_pressed(KeyCode::PageDown) || keys.just_pressed(KeyCode::BracketRight) {
+            switch.write(SwitchScene((scenes.current + 1) % n));
+        }
+        if keys.just_pressed(KeyCode::PageUp) || keys.just_pressed(KeyCode::BracketLeft) {
+            switch.write(SwitchScene((scenes.current + n - 1) % n));
+        }
+    }
     if keys.just_pressed(KeyCode::KeyR) {
         switch.write(SwitchScene(scenes.current));
     }

@@ -51,16 +51,29 @@ pub fn draw_panel(
         };
     }
     let ctx = contexts.ctx_mut()?;
+    // The panel fits the window: its contents scroll within the height left below its
+    // title bar (a 720-pixel window cut off the gizmo toggles at the bottom).
+    let fits = (ctx.input(|i| i.content_rect().height()) - 56.0).max(120.0);
     egui::Window::new("tumble").default_pos([8.0, 8.0]).default_width(290.0).show(ctx, |ui| {
-        egui::ScrollArea::vertical().max_height(660.0).show(ui, |ui| {
+        egui::ScrollArea::vertical().max_height(fits).show(ui, |ui| {
             let current = scenes.names.get(scenes.current).map_or("", |n| n.trim_end_matches(".scene.ron"));
-            egui::ComboBox::from_label("scene (keys 1–9, 0 for the first ten)").selected_text(current).show_ui(ui, |ui| {
-                for (i, name) in scenes.names.iter().enumerate() {
-                    if ui.selectable_label(i == scenes.current, name.trim_end_matches(".scene.ron")).clicked() {
-                        switch.write(SwitchScene(i));
+            let n = scenes.names.len().max(1);
+            ui.horizontal(|ui| {
+                if ui.button("◀").on_hover_text("previous scene (PageUp, [)").clicked() {
+                    switch.write(SwitchScene((scenes.current + n - 1) % n));
+                }
+                egui::ComboBox::from_id_salt("scene").selected_text(current).show_ui(ui, |ui| {
+                    for (i, name) in scenes.names.iter().enumerate() {
+                        if ui.selectable_label(i == scenes.current, name.trim_end_matches(".scene.ron")).clicked() {
+                            switch.write(SwitchScene(i));
+                        }
                     }
+                });
+                if ui.button("▶").on_hover_text("next scene (PageDown, ])").clicked() {
+                    switch.write(SwitchScene((scenes.current + 1) % n));
                 }
             });
+            ui.small(format!("scene {} of {n} · keys 1–9, 0, PageUp/PageDown", scenes.current + 1));
             if let Some(err) = &scenes.error {
                 ui.colored_label(egui::Color32::LIGHT_RED, err);
             }
@@ -139,7 +152,7 @@ pub fn draw_panel(
                 plot.line(Line::new("momentum (kg·m/s)", momentum));
             });
 
-            ui.horizontal(|ui| {
+            ui.horizontal_wrapped(|ui| {
                 ui.label("gizmos");
                 ui.checkbox(&mut debug.joints, "joints");
                 ui.checkbox(&mut debug.contacts, "contacts");
