@@ -78,6 +78,7 @@ pub mod state_hash;
 pub(crate) mod step;
 #[cfg(feature = "study")]
 pub mod study;
+mod systems;
 pub mod timings;
 #[cfg(feature = "viz")]
 pub mod viz;

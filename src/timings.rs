@@ -4,7 +4,7 @@
 use bevy::platform::time::Instant;
 use bevy::prelude::*;
 
-use crate::plugin::PhysicsSystems;
+use crate::systems::PhysicsSystems;
 
 /// Stage names, in step order ([`PhysicsSystems::ORDER`]), as in [`StepTimings`].
 pub const STAGES: [&str; PhysicsSystems::ORDER.len()] = {

@@ -113,8 +113,9 @@ fn plane_distance(d: Vec3, normal: Vec3) -> f32 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Prepared {
     /// The largest load ratio r of any contact (see [`contact_softness`]; an impact
-    /// between like masses counts only the load that stays, see [`SQUEEZE_RATIO`]): it
-    /// sets how many solve passes the step needs.
+    /// between like masses counts only the load that stays, see
+    /// [`SQUEEZE_RATIO`](super::contact_load::SQUEEZE_RATIO)): it sets how many solve
+    /// passes the step needs.
     pub ratio: f32,
     /// The ratio that sets the relax passes: the largest mass ratio of any pair of
     /// moving bodies (heavier over lighter), or the load ratio of a contact that bounces.
@@ -128,14 +129,6 @@ pub struct Prepared {
     /// Some constraint bounces (restitution above zero).
     pub bounce: bool,
 }
-
-/// The mass ratio (heavier over lighter, or the heaviest body pressing on a contact over
-/// its lighter body) from which an impact's impulse counts as a load for the passes: the
-/// ratio at which the passes' rule (`iterations_for`) asks for a second pass. Below it,
-/// impacts between like masses are not counted: the spheres in a box (1 and 8 kg balls,
-/// bouncing) went from 1.98 to 1.02 solve passes a substep, rain (2,000 bodies falling
-/// on each other) from 2.47 to 1.60.
-pub const SQUEEZE_RATIO: f32 = 10.0;
 
 /// What building a contact reads besides its manifold: the scene's colliders, bodies and
 /// solver bodies, the contact settings, and per body the survey's counts of overlaps and

@@ -9,8 +9,15 @@ use crate::math::Softness;
 use crate::math::lanes::{F8, Lane, eq, gt, le, lt, max, select};
 use crate::world::ContactParams;
 
-use super::contact::SQUEEZE_RATIO;
 use super::stiffness::{STACK_LOAD, contact_softness, load_ratio};
+
+/// The mass ratio (heavier over lighter, or the heaviest body pressing on a contact over
+/// its lighter body) from which an impact's impulse counts as a load for the passes: the
+/// ratio at which the passes' rule (`iterations_for`) asks for a second pass. Below it,
+/// impacts between like masses are not counted: the spheres in a box (1 and 8 kg balls,
+/// bouncing) went from 1.98 to 1.02 solve passes a substep, rain (2,000 bodies falling
+/// on each other) from 2.47 to 1.60.
+pub const SQUEEZE_RATIO: f32 = 10.0;
 
 /// What a contact's softness and load ratio depend on.
 #[derive(Clone, Copy, Debug)]
