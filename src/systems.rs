@@ -11,7 +11,8 @@ pub enum PhysicsSystems {
     Prepare,
     /// Gravity, drag, wind, the global push: one system per effect, each only when on.
     Forces,
-    /// Free motion (forces, drag, rotation) with the chosen [`Integrator`].
+    /// Free motion (forces, drag, rotation) with the chosen
+    /// [`Integrator`](crate::settings::Integrator).
     Integrate,
     /// Candidate pairs from swept bounding boxes.
     BroadPhase,
@@ -28,8 +29,9 @@ pub enum PhysicsSystems {
 
 impl PhysicsSystems {
     /// Every stage in step order: the one place the order is written. The plugin chains
-    /// the sets in this order, and [`StepTimings`] and the diagnostics name their stages
-    /// from it. (The discriminants follow it too: `ORDER[i] as usize == i`.)
+    /// the sets in this order, and [`StepTimings`](crate::timings::StepTimings) and the
+    /// diagnostics name their stages from it. (The discriminants follow it too:
+    /// `ORDER[i] as usize == i`.)
     pub const ORDER: [PhysicsSystems; 8] = [
         Self::Prepare,
         Self::Forces,
