@@ -107,15 +107,12 @@ pub fn wake_reached_sleepers(
         let radius = if radius.is_finite() { radius } else { 0.0 };
         let speed = v.length() + b.forces.accel.length() * dt + w.length() * radius;
         let reach = speed * dt;
-        let moved = ColliderEntry {
-            pos,
-            rot,
-            ..c.clone()
-        };
-        let (lo, hi) = moved.shape.aabb(pos, rot);
+        let (lo, hi) = c.shape.aabb(pos, rot);
         near.clear();
         let pad = reach + settings.speculative_margin;
         world.fixed.touching(lo, hi, pad, |f| near.push(f));
+        // The collider where the coming step starts it: copied only once a sleeper is near.
+        let mut moved: Option<ColliderEntry> = None;
         for &f in near.iter() {
             let sleeper = &world.fixed.entries()[f as usize];
             let allowed = sleeper.asleep
@@ -127,7 +124,12 @@ pub fn wake_reached_sleepers(
                 continue;
             }
             let cutoff = settings.margin_for(c.shape.pair_thickness(&sleeper.shape)) + reach;
-            if collide(&moved, 0, sleeper, 1, cutoff).is_some() {
+            let moved = moved.get_or_insert_with(|| ColliderEntry {
+                pos,
+                rot,
+                ..c.clone()
+            });
+            if collide(moved, 0, sleeper, 1, cutoff).is_some() {
                 reached.push((sleeper.aabb_min, sleeper.aabb_max));
             }
         }
